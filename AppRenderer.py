@@ -1,0 +1,203 @@
+"""Builds a scene, renders it with an integrator, saves the image to out/ and shows it.
+
+Run it with no arguments (the play button of VSCode) to render Figure 1 of the course, Phong
+on the Cornell box; `python AppRenderer.py --help` lists the options.
+"""
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from PyRT_Common import *
+from PyRT_Core import *
+from PyRT_Integrators import *
+
+# out/ next to this script, wherever it is run from
+DIRECTORY = str(Path(__file__).resolve().parent / "out") + "/"
+FILENAME = "rendered_image"
+ENV_MAP_PATH = str(Path(__file__).resolve().parent / "env_maps" / "environment.hdr")
+
+
+# ------------------------------------------------------------------------------------------
+# Scenes
+# ------------------------------------------------------------------------------------------
+def sphere_test_scene(areaLS=False, use_env_map=False, width=500, height=500):
+    """A grey sphere above a green floor, lit by one point light (Figures 2 to 5)."""
+    scene = Scene()
+    scene.set_ambient(RGBColor(0.5, 0.5, 0.5))
+
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
+    sphere.set_BRDF(Lambertian(RGBColor(0.8, 0.8, 0.8)))
+    scene.add_object(sphere)
+
+    floor_sides = (Vector3D(8.0, 0.0, 0.0), Vector3D(0.0, 0.0, -8.0))
+    floor = Parallelogram(Vector3D(-4.0, -2.0, -1.0), *floor_sides)
+    floor.set_BRDF(Lambertian(RGBColor(0.2, 0.8, 0.2)))
+    scene.add_object(floor)
+
+    if areaLS:
+        light = Parallelogram(Vector3D(-4.0, 6.0, -1.0), *floor_sides,
+                              emission=RGBColor(3.5, 3.5, 3.5))
+        light.set_BRDF(Lambertian(BLACK))
+        scene.add_object(light)
+    else:
+        scene.add_point_light_sources(PointLight(Vector3D(0.0, 5.0, 0.0),
+                                                 RGBColor(80.0, 80.0, 80.0)))
+    if use_env_map:
+        scene.set_environment_map(ENV_MAP_PATH)
+
+    scene.set_camera(Camera(width, height, 60))
+    return scene
+
+
+def cornell_box_scene(dist, side, areaLS=False, width=500, height=500):
+    """The Cornell box: a blue sphere in a white box with a red left wall and a green right
+    wall, lit by three point lights under the ceiling (Figure 1). The camera looks through
+    the open front, `dist` in front of it; `side` is the box's edge length."""
+    scene = Scene()
+    scene.set_ambient(RGBColor(1.0, 1.0, 0.3))
+    white = RGBColor(0.8, 0.8, 0.8)
+    z_far = -(dist + side)
+    ll = Vector3D(-side / 2, -side / 2, z_far)  # lower left corner of the back wall
+    ur = Vector3D(side / 2, side / 2, z_far)    # upper right corner of the back wall
+
+    objects = [
+        (Sphere(Vector3D(0.0, 0.0, -(dist + side / 2)), 0.25), RGBColor(0.2, 0.2, 0.7)),
+        (Parallelogram(ll, Vector3D(side, 0, 0), Vector3D(0, side, 0)), white),    # back
+        (Parallelogram(ll, Vector3D(side, 0, 0), Vector3D(0, 0, side)), white),    # floor
+        (Parallelogram(ll, Vector3D(0, side, 0), Vector3D(0, 0, side)),
+         RGBColor(0.7, 0.2, 0.2)),                                                 # left
+        (Parallelogram(ur, Vector3D(-side, 0, 0), Vector3D(0, 0, side)), white),   # ceiling
+        (Parallelogram(ur, Vector3D(0, -side, 0), Vector3D(0, 0, side)),
+         RGBColor(0.2, 0.7, 0.2)),                                                 # right
+    ]
+    for obj, colour in objects:
+        obj.set_BRDF(Lambertian(colour))
+        scene.add_object(obj)
+
+    if areaLS:
+        light = Parallelogram(Vector3D(-side / 4, side / 2 - 0.0001, -(dist + side / 4)),
+                              Vector3D(side / 2, 0, 0), Vector3D(0, 0, -side / 2),
+                              emission=RGBColor(1.0, 1.0, 1.0))
+        light.set_BRDF(Lambertian(BLACK))
+        scene.add_object(light)
+    else:
+        for x in (0.0, -side / 4, side / 4):
+            scene.add_point_light_sources(PointLight(
+                Vector3D(x, side / 2 - 0.5, -(dist + side / 2)), RGBColor(0.5, 0.5, 0.5)))
+
+    scene.set_camera(Camera(width, height, 70))
+    return scene
+
+
+# ------------------------------------------------------------------------------------------
+# The course's figures
+# ------------------------------------------------------------------------------------------
+INTEGRATORS = {
+    "lazy": LazyIntegrator,
+    "intersection": IntersectionIntegrator,
+    "depth": DepthIntegrator,
+    "normal": NormalIntegrator,
+    "phong": PhongIntegrator,
+}
+SCENES = {
+    "cornell": lambda width, height: cornell_box_scene(0.75, 2, width=width, height=height),
+    "sphere": lambda width, height: sphere_test_scene(width=width, height=height),
+}
+# (figure, integrator, scene, max_depth): Figure 4 has two images, depth and normal
+FIGURES = [
+    ("figure1", "phong", "cornell", None),
+    ("figure2", "lazy", "sphere", None),
+    ("figure3", "intersection", "sphere", None),
+    ("figure4", "depth", "sphere", 5),
+    ("figure4", "normal", "sphere", None),
+    ("figure5", "phong", "sphere", None),
+]
+
+
+def make_integrator(name, filename, max_depth=None, experiment_name=""):
+    """The integrator called `name` (a key of INTEGRATORS) writing to `filename`."""
+    if name == "depth" and max_depth is not None:
+        return DepthIntegrator(filename, max_depth, experiment_name)
+    return INTEGRATORS[name](filename, experiment_name=experiment_name)
+
+
+def render(integrator, scene, workers=None, samples_per_pixel=1):
+    """Renders scene with integrator, prints the rendering time and returns the PNG path."""
+    integrator.add_scene(scene)
+    start = time.perf_counter()
+    integrator.render(workers=workers, samples_per_pixel=samples_per_pixel)
+    print(f"Rendering time: {time.perf_counter() - start:.2f} s")
+    png = integrator.get_filename() + ".png"
+    print(f"Saved {png} (and .npy, .hdr)")
+    return png
+
+
+def show(png):
+    """Shows the saved image in a window, when there is a screen to show it on."""
+    if not _has_display():
+        print("No display: the image is saved, not shown.")
+        return
+    plt.figure(Path(png).name)
+    plt.imshow(plt.imread(png))
+    plt.axis("off")
+    plt.show()
+
+
+def _has_display():
+    import matplotlib
+    backend = matplotlib.get_backend().lower()
+    return backend not in ("agg", "pdf", "ps", "svg", "pgf", "cairo", "template")
+
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(
+        description="Render a scene of the course with PyRT. With no options: Phong on the "
+                    "Cornell box (Figure 1), saved as out/rendered_image_Phong.png "
+                    "(.npy, .hdr) and shown in a window.")
+    parser.add_argument("--integrator", choices=INTEGRATORS, default="phong",
+                        help="how to colour each pixel (default: phong)")
+    parser.add_argument("--scene", choices=SCENES, default="cornell",
+                        help="cornell: the Cornell box of Figure 1; sphere: the sphere above "
+                             "a floor of Figures 2-5 (default: cornell)")
+    parser.add_argument("--width", type=int, default=500, help="image width in pixels (500)")
+    parser.add_argument("--height", type=int, default=500, help="image height in pixels (500)")
+    parser.add_argument("--max-depth", type=float, default=None,
+                        help="distance drawn black by the depth integrator (default 10; "
+                             "Figure 4 uses 5)")
+    parser.add_argument("--out", default=DIRECTORY,
+                        help="folder for the images (default: out/ next to this script)")
+    parser.add_argument("--workers", type=int, default=None,
+                        help="processes that render (default: all cores; 1: this process "
+                             "only, needed to stop at breakpoints)")
+    parser.add_argument("--spp", type=int, default=1,
+                        help="samples (rays) per pixel, averaged: more smooth jagged "
+                             "edges and cost proportionally more time (default 1)")
+    parser.add_argument("--no-window", action="store_true",
+                        help="save the image without showing it")
+    parser.add_argument("--all-figures", action="store_true",
+                        help="render the six images of the course's Figures 1-5 as "
+                             "out/rendered_image_<Integrator>_figure<N>.png")
+    return parser.parse_args(argv)
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    base = str(Path(args.out) / FILENAME)
+    if args.all_figures:
+        jobs = [(make_integrator(name, base, depth, "_" + figure), SCENES[scene])
+                for figure, name, scene, depth in FIGURES]
+    else:
+        jobs = [(make_integrator(args.integrator, base, args.max_depth), SCENES[args.scene])]
+    pngs = [render(integrator, make_scene(args.width, args.height), args.workers, args.spp)
+            for integrator, make_scene in jobs]
+    if not args.no_window:
+        show(pngs[-1])
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:
+        sys.exit(130)

@@ -1,0 +1,303 @@
+"""PyRT common types: vectors, colours, rays, hit records and the environment map.
+
+Students write ``from PyRT_Common import *``; besides the classes and functions below that
+also brings ``np``, ``cv2``, ``plt``, ``ABC``, ``abstractmethod`` and ``sqrt, acos, cos, sin,
+atan2, floor, pi`` into their module.
+
+Speed note: the operators below are called millions of times per image, so every class uses
+``__slots__`` (smaller, faster attribute access) and every method is a single expression.
+"""
+from abc import ABC, abstractmethod
+from math import acos, atan2, cos, floor, pi, sin, sqrt
+from pathlib import Path
+
+import cv2
+import matplotlib.pyplot as plt
+import numpy as np
+
+__all__ = [
+    "np", "cv2", "plt", "ABC", "abstractmethod",
+    "sqrt", "acos", "cos", "sin", "atan2", "floor", "pi",
+    "EPSILON", "HUGEVALUE", "PI", "TWO_PI", "INVERTED_PI",
+    "Vector3D", "Dot", "Cross", "Length", "Normalize", "orient_normal",
+    "RGBColor", "BLACK", "WHITE", "GREEN", "RED",
+    "Ray", "HitData", "EnvironmentMap",
+]
+
+# ------------------------------------------------------------------------------------------
+# Constants
+# ------------------------------------------------------------------------------------------
+EPSILON = 0.0001
+HUGEVALUE = 1000000.0
+PI = pi
+TWO_PI = 2.0 * pi
+INVERTED_PI = 1.0 / pi
+
+_SCALAR_HINT = ("multiply a {cls} by a number only; for the element-wise product of two "
+                "{cls} objects use a.multiply(b)")
+
+
+# ------------------------------------------------------------------------------------------
+# Vectors
+# ------------------------------------------------------------------------------------------
+class Vector3D:
+    """A point or direction in 3D space, (x, y, z).
+
+    ``v + w`` and ``v - w`` work component by component; ``v * s`` and ``v / s`` scale by a
+    number s (``s * v`` works too); ``v.multiply(w)`` is the element-wise product
+    (x1*x2, y1*y2, z1*z2).
+    """
+
+    __slots__ = ("x", "y", "z")
+
+    def __init__(self, x, y, z):
+        self.x = x
+        self.y = y
+        self.z = z
+
+    def __add__(self, w):
+        return Vector3D(self.x + w.x, self.y + w.y, self.z + w.z)
+
+    def __sub__(self, w):
+        return Vector3D(self.x - w.x, self.y - w.y, self.z - w.z)
+
+    def __neg__(self):
+        return Vector3D(-self.x, -self.y, -self.z)
+
+    def __mul__(self, s):
+        if s.__class__ in _NOT_SCALARS:
+            raise TypeError(_SCALAR_HINT.format(cls="Vector3D"))
+        return Vector3D(self.x * s, self.y * s, self.z * s)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, s):
+        if s.__class__ in _NOT_SCALARS:
+            raise TypeError(_SCALAR_HINT.format(cls="Vector3D"))
+        return Vector3D(self.x / s, self.y / s, self.z / s)
+
+    def __eq__(self, w):
+        if not isinstance(w, Vector3D):
+            return NotImplemented
+        return self.x == w.x and self.y == w.y and self.z == w.z
+
+    __hash__ = None  # mutable: equal vectors may not stay equal, so they cannot be dict keys
+
+    def multiply(self, w):
+        return Vector3D(self.x * w.x, self.y * w.y, self.z * w.z)
+
+    def __iter__(self):
+        return iter((self.x, self.y, self.z))
+
+    def __repr__(self):
+        return f"Vector3D({float(self.x)!r}, {float(self.y)!r}, {float(self.z)!r})"
+
+
+def Dot(a, b):
+    """The dot product a . b = ax*bx + ay*by + az*bz."""
+    return a.x * b.x + a.y * b.y + a.z * b.z
+
+
+def Cross(a, b):
+    """The cross product a x b, perpendicular to both (right-handed)."""
+    return Vector3D(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x)
+
+
+def Length(v):
+    """The Euclidean length |v| = sqrt(v . v)."""
+    return sqrt(v.x * v.x + v.y * v.y + v.z * v.z)
+
+
+def Normalize(v):
+    """The unit vector v / |v|; a zero vector has no direction and raises ValueError."""
+    length = sqrt(v.x * v.x + v.y * v.y + v.z * v.z)
+    if length == 0.0:
+        raise ValueError(f"Normalize: cannot normalise the zero vector {v!r}, it has no "
+                         "direction; check how the vector was computed")
+    return Vector3D(v.x / length, v.y / length, v.z / length)
+
+
+def orient_normal(normal, direction):
+    """The normal flipped to the side of ``direction``: -normal when normal . direction < 0."""
+    if Dot(normal, direction) < 0.0:
+        return Vector3D(-normal.x, -normal.y, -normal.z)
+    return normal
+
+
+# ------------------------------------------------------------------------------------------
+# Colours
+# ------------------------------------------------------------------------------------------
+class RGBColor:
+    """A linear RGB radiance value (r, g, b); the components may exceed 1 before tonemapping.
+
+    ``c + d`` and ``c - d`` work per channel, ``c * s`` and ``c / s`` scale by a number,
+    ``c.multiply(d)`` is the per-channel product used to filter light by a surface colour.
+    """
+
+    __slots__ = ("r", "g", "b")
+
+    def __init__(self, r, g, b):
+        self.r = r
+        self.g = g
+        self.b = b
+
+    def __add__(self, d):
+        return RGBColor(self.r + d.r, self.g + d.g, self.b + d.b)
+
+    def __sub__(self, d):
+        return RGBColor(self.r - d.r, self.g - d.g, self.b - d.b)
+
+    def __mul__(self, s):
+        if s.__class__ in _NOT_SCALARS:
+            raise TypeError(_SCALAR_HINT.format(cls="RGBColor"))
+        return RGBColor(self.r * s, self.g * s, self.b * s)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, s):
+        if s.__class__ in _NOT_SCALARS:
+            raise TypeError(_SCALAR_HINT.format(cls="RGBColor"))
+        return RGBColor(self.r / s, self.g / s, self.b / s)
+
+    def __eq__(self, d):
+        if not isinstance(d, RGBColor):
+            return NotImplemented
+        return self.r == d.r and self.g == d.g and self.b == d.b
+
+    __hash__ = None  # mutable, see Vector3D
+
+    def multiply(self, d):
+        return RGBColor(self.r * d.r, self.g * d.g, self.b * d.b)
+
+    def clamp(self, lo, hi):
+        """Clamps every channel to [lo, hi], in place."""
+        self.r = min(max(self.r, lo), hi)
+        self.g = min(max(self.g, lo), hi)
+        self.b = min(max(self.b, lo), hi)
+
+    def __iter__(self):
+        return iter((self.r, self.g, self.b))
+
+    def __repr__(self):
+        return f"RGBColor({float(self.r)!r}, {float(self.g)!r}, {float(self.b)!r})"
+
+
+class _ConstantColor(RGBColor):
+    """A shared colour such as BLACK: assigning to its channels would change it everywhere."""
+
+    __slots__ = ()
+
+    def __init__(self, r, g, b):
+        object.__setattr__(self, "r", float(r))
+        object.__setattr__(self, "g", float(g))
+        object.__setattr__(self, "b", float(b))
+
+    def __setattr__(self, name, value):
+        raise AttributeError(
+            f"{self!r} is a shared constant (BLACK, WHITE, GREEN or RED) and cannot be changed; "
+            f"make your own copy first, e.g. color = RGBColor({self.r}, {self.g}, {self.b})")
+
+    def clamp(self, lo, hi):
+        if not (lo <= self.r <= hi and lo <= self.g <= hi and lo <= self.b <= hi):
+            self.r = None  # raises the AttributeError above
+
+    def __reduce__(self):
+        return (_ConstantColor, (self.r, self.g, self.b))
+
+
+BLACK = _ConstantColor(0.0, 0.0, 0.0)
+WHITE = _ConstantColor(1.0, 1.0, 1.0)
+GREEN = _ConstantColor(0.0, 1.0, 0.0)
+RED = _ConstantColor(1.0, 0.0, 0.0)
+
+_NOT_SCALARS = frozenset((Vector3D, RGBColor, _ConstantColor))
+
+
+# ------------------------------------------------------------------------------------------
+# Rays and hits
+# ------------------------------------------------------------------------------------------
+class Ray:
+    """The half-line o + d*t, t in [t_min, t_max].
+
+    t is measured as a distance along the ray: with a unit direction d this is the parameter
+    itself, and PyRT's intersection tests also read it as a distance when d is not unit length.
+    ``t_min`` defaults to EPSILON so that a ray starting on a surface does not hit it again.
+    """
+
+    __slots__ = ("o", "d", "t_max", "t_min")
+
+    def __init__(self, origin=None, direction=None, tmax=HUGEVALUE, tmin=EPSILON):
+        # Defaults are fresh vectors: a shared default would leak one ray's changes into all.
+        self.o = Vector3D(0.0, 0.0, 0.0) if origin is None else origin
+        self.d = Vector3D(0.0, 0.0, 0.0) if direction is None else direction
+        self.t_max = tmax
+        self.t_min = tmin
+
+    def get_hitpoint(self, t):
+        """The point o + d * t."""
+        o, d = self.o, self.d
+        return Vector3D(o.x + d.x * t, o.y + d.y * t, o.z + d.z * t)
+
+    def __repr__(self):
+        return f"Ray({self.o!r}, {self.d!r}, t_min={self.t_min!r}, t_max={self.t_max!r})"
+
+
+class HitData:
+    """The result of one ray-object intersection test.
+
+    ``has_hit`` says whether there is a hit; only then the rest means something:
+    ``hit_point`` (on the surface), its unit ``normal``, ``hit_distance`` (the distance
+    travelled along the ray) and ``primitive_index`` (the object's index in
+    ``scene.object_list``, set by ``closest_hit``).
+    """
+
+    __slots__ = ("has_hit", "hit_point", "normal", "hit_distance", "primitive_index")
+
+    def __init__(self, has_hit=False, hit_point=None, normal=None, hit_distance=HUGEVALUE,
+                 primitive_index=-1):
+        self.has_hit = has_hit
+        self.hit_point = Vector3D(0.0, 0.0, 0.0) if hit_point is None else hit_point
+        self.normal = Vector3D(0.0, 0.0, 0.0) if normal is None else normal
+        self.hit_distance = hit_distance
+        self.primitive_index = primitive_index
+
+    def __repr__(self):
+        if not self.has_hit:
+            return "HitData(has_hit=False)"
+        return (f"HitData(has_hit=True, hit_point={self.hit_point!r}, normal={self.normal!r}, "
+                f"hit_distance={self.hit_distance!r}, primitive_index={self.primitive_index})")
+
+
+# ------------------------------------------------------------------------------------------
+# Environment map
+# ------------------------------------------------------------------------------------------
+class EnvironmentMap:
+    """Light arriving from infinitely far away, stored as a latitude-longitude HDR image.
+
+    A direction d maps to u = (1 + atan2(d.x, -d.z)/pi)/2 (longitude, 0.5 straight ahead)
+    and v = acos(d.y)/pi (0 straight up, 1 straight down).
+    """
+
+    def __init__(self, path):
+        path = Path(path)
+        if not path.is_file():
+            raise FileNotFoundError(f"EnvironmentMap: no image file at {str(path)!r} "
+                                    f"(looked in {str(path.resolve().parent)!r})")
+        image = cv2.imread(str(path), cv2.IMREAD_ANYDEPTH | cv2.IMREAD_COLOR)
+        if image is None:
+            raise ValueError(f"EnvironmentMap: OpenCV cannot read {str(path)!r}; "
+                             "give it an .hdr (Radiance) or .exr latitude-longitude image")
+        self.image = cv2.cvtColor(image, cv2.COLOR_BGR2RGB).astype(np.float64)
+        self.height, self.width = self.image.shape[:2]
+
+    def euclideanToLatLong(self, d):
+        """The (u, v) image coordinates, both in [0, 1], of the unit direction d."""
+        u = (1.0 + atan2(d.x, -d.z) / pi) / 2.0
+        v = acos(min(1.0, max(-1.0, d.y))) / pi  # rounding can push d.y just outside [-1, 1]
+        return u, v
+
+    def getValue(self, d):
+        """The radiance arriving from direction d: the texel under (u, v)."""
+        u, v = self.euclideanToLatLong(d)
+        r, g, b = self.image[floor(v * (self.height - 1)), floor(u * (self.width - 1))]
+        return RGBColor(float(r), float(g), float(b))

@@ -1,0 +1,521 @@
+"""PyRT core: the scene, its objects (primitives), materials (BRDFs), lights and camera.
+
+Every intersection test measures t as a distance along the ray and works on a unit
+direction, so a ray whose direction is not unit length hits the same point at the same
+distance as its normalised version.
+
+Speed note: ``Scene.closest_hit`` and ``Scene.any_hit`` run for every ray, so they talk to
+the primitives through ``_distance``, which takes the ray as plain floats and returns the
+distance or None; only the nearest hit is turned into a ``HitData``.
+"""
+import io
+import os
+import tempfile
+from math import copysign, isfinite, tan
+from pathlib import Path
+
+from PyRT_Common import *
+
+# ------------------------------------------------------------------------------------------
+# Robustness constants
+# ------------------------------------------------------------------------------------------
+# A ray direction whose squared length is this close to 1 is used as it is; anything else
+# is normalised first (a normalised vector is only unit length to within rounding).
+UNIT_TOLERANCE = 1e-12
+# Parallelogram edge test tolerance, in units of the sides: rounding in the hit point must
+# not open cracks along edges and corners, where neighbouring walls meet.
+EDGE_TOLERANCE = 1e-9
+
+
+# ------------------------------------------------------------------------------------------
+# Input checks: raised where the mistake is made, naming the argument
+# ------------------------------------------------------------------------------------------
+def _check_vector(owner, name, v):
+    """A copy of v as a Vector3D of plain floats, or a TypeError/ValueError naming it."""
+    if not isinstance(v, Vector3D):
+        raise TypeError(f"{owner}: {name} must be a Vector3D, got {v!r}")
+    x, y, z = float(v.x), float(v.y), float(v.z)
+    if not (isfinite(x) and isfinite(y) and isfinite(z)):
+        raise ValueError(f"{owner}: {name} must have finite components, got {v!r}")
+    return Vector3D(x, y, z)
+
+
+def _check_nonzero(owner, name, v):
+    v = _check_vector(owner, name, v)
+    if v.x == 0.0 and v.y == 0.0 and v.z == 0.0:
+        raise ValueError(f"{owner}: {name} must not be the zero vector")
+    return v
+
+
+def _check_color(owner, name, c):
+    if not isinstance(c, RGBColor):
+        raise TypeError(f"{owner}: {name} must be an RGBColor, got {c!r}")
+    r, g, b = float(c.r), float(c.g), float(c.b)
+    if not (isfinite(r) and isfinite(g) and isfinite(b)):
+        raise ValueError(f"{owner}: {name} must have finite channels, got {c!r}")
+    return RGBColor(r, g, b)
+
+
+def _check_positive(owner, name, value):
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+        raise TypeError(f"{owner}: {name} must be a number, got {value!r}")
+    value = float(value)
+    if not (0.0 < value < float("inf")):
+        raise ValueError(f"{owner}: {name} must be positive and finite, got {value!r}")
+    return value
+
+
+def _unit_ray(ray):
+    """The ray as floats (ox, oy, oz, dx, dy, dz) with d scaled to unit length."""
+    o, d = ray.o, ray.d
+    dx, dy, dz = d.x, d.y, d.z
+    dd = dx * dx + dy * dy + dz * dz
+    if not abs(dd - 1.0) <= UNIT_TOLERANCE:  # also true for NaN: checked below
+        big = max(abs(dx), abs(dy), abs(dz))
+        if not 0.0 < big < float("inf"):
+            raise ValueError(f"the ray direction must be a non-zero finite vector, got {d!r}; "
+                             "set ray.d before tracing the ray")
+        dx, dy, dz = dx / big, dy / big, dz / big  # rescale first: dd may over/underflow
+        inv = 1.0 / sqrt(dx * dx + dy * dy + dz * dz)
+        dx, dy, dz = dx * inv, dy * inv, dz * inv
+    return o.x, o.y, o.z, dx, dy, dz
+
+
+class _Shape:
+    """A geometric attribute of a primitive or camera: assigning it re-derives the cached
+    constants of its owner (so ``sphere.radius = 3`` moves the surface, as expected)."""
+
+    def __set_name__(self, owner, name):
+        self.slot = "_" + name
+
+    def __get__(self, obj, owner=None):
+        return self if obj is None else getattr(obj, self.slot)
+
+    def __set__(self, obj, value):
+        setattr(obj, self.slot, value)
+        obj._derive()
+
+
+# ------------------------------------------------------------------------------------------
+# Scene
+# ------------------------------------------------------------------------------------------
+class Scene:
+    """Everything that is rendered: camera, objects, point lights, ambient light i_a and an
+    optional environment map, plus the image they are rendered into."""
+
+    def __init__(self):
+        self.camera = None
+        self.env_map = None
+        self.rendered_image = None
+        self.object_list = []
+        self.pointLights = []
+        self.i_a = RGBColor(0.0, 0.0, 0.0)
+
+    def set_ambient(self, i_a):
+        self.i_a = _check_color("Scene.set_ambient", "i_a", i_a)
+
+    def set_camera(self, camera):
+        if not isinstance(camera, Camera):
+            raise TypeError(f"Scene.set_camera: camera must be a Camera, got {camera!r}")
+        self.camera = camera
+        self.rendered_image = np.zeros((camera.height, camera.width, 3))
+
+    def set_environment_map(self, path):
+        self.env_map = EnvironmentMap(path)
+
+    def add_object(self, obj):
+        if not isinstance(obj, Primitive):
+            raise TypeError("Scene.add_object: obj must be a Primitive (Sphere, InfinitePlane, "
+                            f"Parallelogram or your own subclass), got {obj!r}")
+        self.object_list.append(obj)
+
+    def add_point_light_sources(self, light):
+        if not isinstance(light, PointLight):
+            raise TypeError(f"Scene.add_point_light_sources: light must be a PointLight, "
+                            f"got {light!r}")
+        self.pointLights.append(light)
+
+    def any_hit(self, ray):
+        """True when the ray hits any object at a distance in [ray.t_min, ray.t_max]."""
+        return self.occluded(*_unit_ray(ray), ray.t_min, ray.t_max)
+
+    def occluded(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
+        """any_hit for a ray given as floats with a unit direction: stops at the first hit."""
+        for obj in self.object_list:
+            if obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max) is not None:
+                return True
+        return False
+
+    def closest_hit(self, ray):
+        """The nearest hit in [ray.t_min, ray.t_max], as a HitData whose primitive_index is
+        the object's index in object_list; a HitData with has_hit False on a miss."""
+        ox, oy, oz, dx, dy, dz = _unit_ray(ray)
+        t_min, t_max = ray.t_min, ray.t_max
+        nearest = -1
+        for index, obj in enumerate(self.object_list):
+            t = obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max)
+            if t is not None:
+                t_max, nearest = t, index  # later objects must now beat this distance
+        if nearest < 0:
+            return HitData()
+        hit = self.object_list[nearest]._hit_data(ox, oy, oz, dx, dy, dz, t_max)
+        hit.primitive_index = nearest
+        return hit
+
+    def set_pixel(self, pixel_val, x, y):
+        """Stores the RGBColor pixel_val at column x, row y of rendered_image."""
+        image = self.rendered_image
+        if image is None:
+            raise RuntimeError("Scene.set_pixel: the scene has no image yet; call "
+                               "scene.set_camera(camera) first")
+        height, width = image.shape[:2]
+        if not (0 <= x < width and 0 <= y < height):
+            raise IndexError(f"Scene.set_pixel: pixel ({x}, {y}) is outside the "
+                             f"{width}x{height} image (0 <= x < {width}, 0 <= y < {height})")
+        try:
+            image[y, x] = (pixel_val.r, pixel_val.g, pixel_val.b)
+        except AttributeError:
+            raise TypeError(f"Scene.set_pixel: pixel_val must be an RGBColor, "
+                            f"got {pixel_val!r} for pixel ({x}, {y})") from None
+
+    def save_image(self, full_filename, tonemap=True):
+        """Writes full_filename + '.png' (display image), '.npy' (the linear float image) and
+        '.hdr' (Radiance HDR); creates the folder if needed. Each file appears whole or not
+        at all: it is written to a temporary file that then replaces the target.
+
+        With tonemap False the PNG shows the linear values clipped to [0, 1] (Figure 2)."""
+        image = self.rendered_image
+        if image is None:
+            raise RuntimeError("Scene.save_image: the scene has no image yet; call "
+                               "scene.set_camera(camera) and render first")
+        base = Path(full_filename)
+        base.parent.mkdir(parents=True, exist_ok=True)
+        display = tonemap_image(image) if tonemap else np.clip(np.nan_to_num(image), 0.0, 1.0)
+        png = io.BytesIO()
+        plt.imsave(png, display, format="png")
+        npy = io.BytesIO()
+        np.save(npy, image)
+        ok, hdr = cv2.imencode(".hdr", np.ascontiguousarray(image[:, :, ::-1], np.float32))
+        if not ok:
+            raise RuntimeError("Scene.save_image: OpenCV could not encode the HDR image")
+        for suffix, data in ((".png", png.getvalue()), (".npy", npy.getvalue()),
+                             (".hdr", hdr.tobytes())):
+            _write_atomically(base.parent / (base.name + suffix), data)
+
+
+def tonemap_image(image, gamma=2.5):
+    """The course's display mapping, OpenCV's default tonemapper cv2.createTonemap(gamma):
+    the whole image (all pixels and channels) is mapped linearly so that its minimum becomes
+    0 and its maximum 1, raised to the power 1/gamma and clipped to [0, 1].
+
+    Unlike OpenCV it ignores non-finite values when it looks for the minimum and maximum,
+    so one NaN from a buggy integrator does not turn the whole picture black; NaN and -inf
+    pixels are shown as the minimum, +inf as the maximum."""
+    finite = np.isfinite(image)
+    if not finite.any():
+        return np.zeros(image.shape)
+    lo, hi = float(image[finite].min()), float(image[finite].max())
+    out = np.nan_to_num(image, nan=lo, posinf=hi, neginf=lo)
+    if hi - lo > np.finfo(float).eps:  # OpenCV leaves a flat image as it is
+        out = (out - lo) / (hi - lo)
+    return np.clip(out, 0.0, 1.0) ** (1.0 / gamma)
+
+
+def _write_atomically(path, data):
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix="." + path.name, suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+# ------------------------------------------------------------------------------------------
+# Primitives
+# ------------------------------------------------------------------------------------------
+class Primitive(ABC):
+    """An object of the scene: a surface that rays can hit, with a material (BRDF) and an
+    emitted radiance (BLACK unless the object is an area light)."""
+
+    def __init__(self, emission=BLACK):
+        self.emission = _check_color(type(self).__name__, "emission", emission)
+        self.BRDF = None
+
+    def set_BRDF(self, brdf):
+        if not isinstance(brdf, BRDF):
+            raise TypeError(f"{type(self).__name__}.set_BRDF: brdf must be a BRDF such as "
+                            f"Lambertian(RGBColor(...)), got {brdf!r}")
+        self.BRDF = brdf
+
+    def get_BRDF(self):
+        return self.BRDF
+
+    @abstractmethod
+    def intersect(self, ray):
+        """The hit of this object along ray, as a HitData (has_hit False on a miss)."""
+
+    # The two methods below are what Scene uses. The built-in primitives override them with
+    # fast versions; a student's own Primitive subclass only needs intersect(), whose last
+    # hit is kept for the _hit_data call that follows when it is the nearest.
+    def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
+        hit = self.intersect(Ray(Vector3D(ox, oy, oz), Vector3D(dx, dy, dz), t_max, t_min))
+        self._last_hit = hit
+        return hit.hit_distance if hit.has_hit else None
+
+    def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
+        return self._last_hit
+
+
+class _FastPrimitive(Primitive):
+    """A built-in primitive: intersect() is the public face of _distance and _hit_data."""
+
+    def intersect(self, ray):
+        ox, oy, oz, dx, dy, dz = _unit_ray(ray)
+        t = self._distance(ox, oy, oz, dx, dy, dz, ray.t_min, ray.t_max)
+        if t is None:
+            return HitData()
+        return self._hit_data(ox, oy, oz, dx, dy, dz, t)
+
+
+class Sphere(_FastPrimitive):
+    """The sphere |p - origin| = radius; its normal (p - origin)/radius points outward, also
+    for rays that start inside.
+
+    Intersection, with f = o - origin and unit d, solves t^2 + 2bt + c = 0 for b = f.d and
+    c = f.f - r^2. The textbook discriminant b^2 - c cancels catastrophically when the sphere
+    is far away compared with its radius, so it is computed as r^2 - |f - b d|^2, and the
+    two roots as q = -b - sign(b) sqrt(disc) and c / q, which never subtracts nearly equal
+    numbers (Ray Tracing Gems, chapter 7)."""
+
+    origin = _Shape()
+    radius = _Shape()
+
+    def __init__(self, sphere_origin, sphere_radius, emission=BLACK):
+        super().__init__(emission)
+        self._origin = sphere_origin
+        self._radius = sphere_radius
+        self._derive()
+
+    def _derive(self):
+        self._origin = _check_vector("Sphere", "sphere_origin", self._origin)
+        self._radius = _check_positive("Sphere", "sphere_radius", self._radius)
+        self.radius_squared = self._radius * self._radius
+        c = self._origin
+        self._k = (c.x, c.y, c.z, self.radius_squared)
+
+    def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
+        cx, cy, cz, r2 = self._k
+        fx, fy, fz = ox - cx, oy - cy, oz - cz
+        b = fx * dx + fy * dy + fz * dz
+        lx, ly, lz = fx - b * dx, fy - b * dy, fz - b * dz
+        disc = r2 - (lx * lx + ly * ly + lz * lz)
+        if disc < 0.0:
+            return None
+        q = -b - copysign(sqrt(disc), b)
+        if q == 0.0:  # b == disc == 0: the ray starts on the sphere, touching it
+            t0 = t1 = 0.0
+        else:
+            t0 = (fx * fx + fy * fy + fz * fz - r2) / q
+            t1 = q
+            if t0 > t1:
+                t0, t1 = t1, t0
+        if t_min <= t0 <= t_max:
+            return t0
+        if t_min <= t1 <= t_max:
+            return t1
+        return None
+
+    def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
+        cx, cy, cz, r2 = self._k
+        # Rounding leaves o + d*t slightly off the surface; project it back onto the sphere.
+        vx, vy, vz = ox + dx * t - cx, oy + dy * t - cy, oz + dz * t - cz
+        length = sqrt(vx * vx + vy * vy + vz * vz)
+        if length == 0.0:  # only a sphere far below the precision of its position gets here
+            return HitData(True, Vector3D(cx, cy, cz), Vector3D(-dx, -dy, -dz), t)
+        nx, ny, nz = vx / length, vy / length, vz / length
+        r = self._radius
+        return HitData(True, Vector3D(cx + nx * r, cy + ny * r, cz + nz * r),
+                       Vector3D(nx, ny, nz), t)
+
+
+class InfinitePlane(_FastPrimitive):
+    """The plane through origin with unit normal n: the points p with (p - origin).n = 0.
+    A ray o + t d meets it at t = (origin - o).n / (d.n); a ray parallel to it (d.n = 0)
+    misses. The normal is returned as given, whichever side the ray comes from."""
+
+    origin = _Shape()
+    normal = _Shape()
+
+    def __init__(self, plane_origin, plane_normal, emission=BLACK):
+        super().__init__(emission)
+        self._origin = plane_origin
+        self._normal = plane_normal
+        self._derive()
+
+    def _derive(self):
+        self._origin = _check_vector("InfinitePlane", "plane_origin", self._origin)
+        self._normal = Normalize(_check_nonzero("InfinitePlane", "plane_normal", self._normal))
+        n, p = self._normal, self._origin
+        self._k = (n.x, n.y, n.z, Dot(p, n))
+
+    def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
+        nx, ny, nz, pn = self._k
+        den = dx * nx + dy * ny + dz * nz
+        if den == 0.0:
+            return None
+        t = (pn - (ox * nx + oy * ny + oz * nz)) / den
+        return t if t_min <= t <= t_max else None  # an overflow to inf fails t <= t_max
+
+    def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
+        n = self._normal
+        return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
+                       Vector3D(n.x, n.y, n.z), t)
+
+
+class Parallelogram(_FastPrimitive):
+    """The region {point + a*s1 + b*s2 : 0 <= a, b <= 1}, edges and corners included.
+
+    The ray meets the supporting plane (normal m = s1 x s2) at p; with q = p - point, the
+    coordinates are a = q.(s2 x m)/(m.m) and b = q.(m x s1)/(m.m), exact for any pair of
+    non-parallel sides, orthogonal or not. The unit normal m/|m| is flipped to face the ray."""
+
+    point = _Shape()
+    s1 = _Shape()
+    s2 = _Shape()
+
+    def __init__(self, point, s1, s2, emission=BLACK):
+        super().__init__(emission)
+        self._point, self._s1, self._s2 = point, s1, s2
+        self._derive()
+
+    def _derive(self):
+        p = self._point = _check_vector("Parallelogram", "point", self._point)
+        s1 = self._s1 = _check_nonzero("Parallelogram", "s1", self._s1)
+        s2 = self._s2 = _check_nonzero("Parallelogram", "s2", self._s2)
+        m = Cross(s1, s2)
+        mm = Dot(m, m)
+        # Parallel sides span no area: sin(angle)^2 = |s1 x s2|^2 / (|s1|^2 |s2|^2) ~ 0.
+        if mm <= 1e-24 * Dot(s1, s1) * Dot(s2, s2):
+            raise ValueError(f"Parallelogram: s1 {s1!r} and s2 {s2!r} are parallel, so they "
+                             "span no area; give two sides that point in different directions")
+        self.normal = Normalize(m)
+        n = self.normal
+        ua, ub = Cross(s2, m) / mm, Cross(m, s1) / mm
+        self._k = (n.x, n.y, n.z, Dot(p, n))
+        self._k2 = (p.x, p.y, p.z, ua.x, ua.y, ua.z, ub.x, ub.y, ub.z)
+
+    def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
+        nx, ny, nz, pn = self._k
+        den = dx * nx + dy * ny + dz * nz
+        if den == 0.0:
+            return None
+        t = (pn - (ox * nx + oy * ny + oz * nz)) / den
+        if not t_min <= t <= t_max:
+            return None
+        px, py, pz, uax, uay, uaz, ubx, uby, ubz = self._k2
+        qx, qy, qz = ox + dx * t - px, oy + dy * t - py, oz + dz * t - pz
+        a = qx * uax + qy * uay + qz * uaz
+        if not -EDGE_TOLERANCE <= a <= 1.0 + EDGE_TOLERANCE:
+            return None
+        b = qx * ubx + qy * uby + qz * ubz
+        if not -EDGE_TOLERANCE <= b <= 1.0 + EDGE_TOLERANCE:
+            return None
+        return t
+
+    def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
+        nx, ny, nz = self._k[:3]
+        if dx * nx + dy * ny + dz * nz > 0.0:
+            nx, ny, nz = -nx, -ny, -nz
+        return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
+                       Vector3D(nx, ny, nz), t)
+
+
+# ------------------------------------------------------------------------------------------
+# BRDFs
+# ------------------------------------------------------------------------------------------
+class BRDF(ABC):
+    """How a surface reflects light: the ratio of radiance leaving towards wo to irradiance
+    arriving from wi (both unit vectors pointing away from the surface)."""
+
+    @abstractmethod
+    def get_value(self, incoming, outgoing, normal):
+        """The reflected fraction for light from ``incoming`` seen from ``outgoing``."""
+
+
+class Lambertian(BRDF):
+    """A perfectly matte surface: f = diffuse_colour / pi for every pair of directions.
+
+    ``kd`` already holds the 1/pi, and get_value includes the cosine of the light's angle:
+    get_value(wi, wo, n) = kd * (n.wi) when n.wi > 0, else BLACK."""
+
+    def __init__(self, diffuse_colour):
+        diffuse_colour = _check_color("Lambertian", "diffuse_colour", diffuse_colour)
+        self.kd = diffuse_colour / pi
+
+    def get_value(self, wi, wo, normal):
+        cos_theta = Dot(normal, wi)
+        if cos_theta > 0.0:
+            kd = self.kd
+            return RGBColor(kd.r * cos_theta, kd.g * cos_theta, kd.b * cos_theta)
+        return BLACK
+
+
+# ------------------------------------------------------------------------------------------
+# Lights
+# ------------------------------------------------------------------------------------------
+class PointLight:
+    """A point that emits ``intensity`` in every direction; the irradiance it gives a point
+    at distance r, facing it, is intensity / r^2."""
+
+    def __init__(self, pos_, intensity_):
+        self.pos = _check_vector("PointLight", "pos_", pos_)
+        self.intensity = _check_color("PointLight", "intensity_", intensity_)
+
+
+# ------------------------------------------------------------------------------------------
+# Camera
+# ------------------------------------------------------------------------------------------
+class Camera:
+    """A pinhole camera at the origin looking down -z with +y up.
+
+    Pixel (x, y) has screen coordinates x_s = 2(x + 0.5)/width - 1 and
+    y_s = 1 - 2(y + 0.5)/height; its ray goes through the point
+    (x_s * tan(fov/2) * aspect_ratio, y_s * tan(fov/2), -1) of the image plane z = -1."""
+
+    width = _Shape()
+    height = _Shape()
+    vertical_fov = _Shape()
+
+    def __init__(self, width_, height_, vertical_fov_):
+        self._width, self._height = width_, height_
+        fov = _check_positive("Camera", "vertical_fov_", vertical_fov_)
+        if not fov < 180.0:
+            raise ValueError(f"Camera: vertical_fov_ is in degrees and must lie strictly "
+                             f"between 0 and 180, got {vertical_fov_!r}")
+        self._vertical_fov = fov * pi / 180.0
+        self._derive()
+
+    def _derive(self):
+        for name in ("width", "height"):
+            value = getattr(self, "_" + name)
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+                raise ValueError(f"Camera: {name} must be a positive whole number of pixels, "
+                                 f"got {value!r}")
+            setattr(self, "_" + name, int(value))
+        if not 0.0 < self._vertical_fov < pi:
+            raise ValueError(f"Camera: vertical_fov is in radians once the camera exists and "
+                             f"must lie strictly between 0 and pi, got {self._vertical_fov!r}")
+        self.aspect_ratio = self._width / self._height
+        self._scale_y = tan(self._vertical_fov / 2.0)
+        self._scale_x = self._scale_y * self.aspect_ratio
+
+    def get_direction(self, x, y, u=0.5, v=0.5):
+        """The unit direction through the point (u, v) of pixel (x, y); (0.5, 0.5), the
+        default, is the pixel centre. Other values of u and v in [0, 1) serve
+        anti-aliasing."""
+        px = (2.0 * (x + u) / self._width - 1.0) * self._scale_x
+        py = (1.0 - 2.0 * (y + v) / self._height) * self._scale_y
+        length = sqrt(px * px + py * py + 1.0)
+        return Vector3D(px / length, py / length, -1.0 / length)

@@ -1,0 +1,422 @@
+"""PyRT integrators: the algorithms that turn a scene into an image.
+
+An integrator answers one question, ``compute_color(ray)``: what colour arrives along this
+ray? ``render()`` asks it once per pixel, for the ray from the camera through the pixel's
+centre, and saves the image. Write your own integrator by subclassing ``Integrator`` and
+overriding ``compute_color``.
+"""
+import multiprocessing
+import os
+import pickle
+import signal
+import sys
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
+from pathlib import Path
+
+from tqdm import tqdm
+
+from PyRT_Common import *
+from PyRT_Common import __all__ as _common_names
+
+__all__ = _common_names + [
+    "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
+    "NormalIntegrator", "PhongIntegrator",
+]
+
+INFINITY = float("inf")
+# A shadow ray stops this fraction short of its light, so a light lying exactly on a
+# surface is not hidden by that surface.
+SHADOW_EPSILON = 1e-6
+# Secondary rays start this far above the surface, relative to the size of the hit point's
+# coordinates: far above the rounding error of a hit point (about 1e-16 relative), far below
+# any detail of the scene, and the same at every scale of the scene.
+OFFSET_SCALE = 2.0 ** -32
+# With workers=None, a render that one process finishes sooner than this stays in one
+# process: starting workers costs more than they save.
+PARALLEL_MIN_SECONDS = 1.0
+SAMPLE_SEED = 0x5079_5254  # "PyRT"
+
+
+# ------------------------------------------------------------------------------------------
+# Integrator base class
+# ------------------------------------------------------------------------------------------
+class Integrator(ABC):
+    """Renders ``scene`` into ``filename`` = filename_ + experiment_name (+ '.png', ...).
+
+    The rendering loop, for every pixel (x, y) of the camera:
+        ray = the ray from the camera origin through the centre of pixel (x, y)
+        scene.set_pixel(self.compute_color(ray), x, y)
+    then ``scene.save_image(self.get_filename())``.
+    """
+
+    tonemap = True  # the PNG goes through the course's tonemapper (see Scene.save_image)
+
+    def __init__(self, filename_, experiment_name=""):
+        self.filename = filename_ + experiment_name
+        self.scene = None
+
+    def get_filename(self):
+        return self.filename
+
+    def add_scene(self, scene):
+        self.scene = scene
+
+    @abstractmethod
+    def compute_color(self, ray):
+        """The RGBColor arriving along ray."""
+
+    def pixel_color(self, x, y, u=0.5, v=0.5):
+        """The colour seen through the point (u, v) of pixel (x, y); (0.5, 0.5) is its
+        centre. Camera rays start at no surface, so they see objects at any distance > 0."""
+        direction = self.scene.camera.get_direction(x, y, u, v)
+        return self.compute_color(Ray(direction=direction, tmax=INFINITY, tmin=0.0))
+
+    def render(self, workers=None, samples_per_pixel=1, progress=True):
+        """Renders every pixel and saves the image.
+
+        workers: how many processes render: None uses every core (for renders long enough
+            to gain from them), 1 renders in this process. The image is the same either way.
+        samples_per_pixel: rays per pixel, averaged; 1 is the ray through the centre, more
+            (jittered over an even grid inside the pixel) smooth jagged edges.
+        progress: show a progress bar with the time left."""
+        if getattr(multiprocessing.current_process(), "_inheriting", False):
+            # A worker process is importing the main script, and the script renders at
+            # import: it is not guarded by `if __name__ == "__main__":`. The main process
+            # sees the worker fail and renders on its own, saying why.
+            raise SystemExit(1)
+        scene = self._checked_scene()
+        samples = _check_samples(samples_per_pixel)
+        workers = _check_workers(workers)
+        filename = self.get_filename()
+        _check_writable(Path(filename).resolve().parent)
+        height, width = scene.camera.height, scene.camera.width
+        if scene.rendered_image is None or scene.rendered_image.shape != (height, width, 3):
+            scene.rendered_image = np.zeros((height, width, 3))
+        image = scene.rendered_image
+        image.fill(0.0)
+        bar = tqdm(total=height * width, unit="px", unit_scale=True, disable=not progress,
+                   desc=type(self).__name__, mininterval=0.5)
+        try:
+            for y0, rows in self._render_blocks(height, samples, workers):
+                image[y0:y0 + len(rows)] = rows
+                bar.update(rows.shape[0] * width)
+        except KeyboardInterrupt:
+            bar.close()
+            scene.save_image(filename + "_partial", tonemap=self.tonemap)
+            print(f"\nInterrupted: the rows rendered so far are saved in "
+                  f"{filename}_partial.png (.npy, .hdr)", file=sys.stderr)
+            raise
+        bar.close()
+        _report_non_finite(image, type(self).__name__)
+        scene.save_image(filename, tonemap=self.tonemap)
+
+    def render_rows(self, y0, y1, samples_per_pixel=1):
+        """Rows y0 .. y1-1 of the image as an array of shape (y1 - y0, width, 3)."""
+        width = self.scene.camera.width
+        pixel_color = self.pixel_color
+        rows = []
+        for y in range(y0, y1):
+            offsets = _pixel_offsets(samples_per_pixel, y, width)
+            row = []
+            for x in range(width):
+                r = g = b = 0.0
+                for u, v in offsets[x]:
+                    color = pixel_color(x, y, u, v)
+                    try:
+                        r += color.r
+                        g += color.g
+                        b += color.b
+                    except (AttributeError, TypeError):
+                        raise self._not_a_color(color, x, y) from None
+                row.append((r / samples_per_pixel, g / samples_per_pixel,
+                            b / samples_per_pixel))
+            rows.append(row)
+        return np.array(rows, dtype=float)
+
+    def _not_a_color(self, color, x, y):
+        hint = " (is a return statement missing?)" if color is None else ""
+        return TypeError(f"{type(self).__name__}.compute_color returned {color!r} for pixel "
+                         f"({x}, {y}){hint}; it must return an RGBColor, such as "
+                         "RGBColor(r, g, b) or BLACK, with numbers as channels")
+
+    def _checked_scene(self):
+        scene = self.scene
+        if scene is None:
+            raise RuntimeError(f"{type(self).__name__}.render: no scene to render; call "
+                               "integrator.add_scene(scene) first")
+        if getattr(scene, "camera", None) is None:
+            raise RuntimeError(f"{type(self).__name__}.render: the scene has no camera; call "
+                               "scene.set_camera(Camera(width, height, fov)) first")
+        return scene
+
+    def _render_blocks(self, height, samples, workers):
+        """Yields (first row, rows) blocks of the image, in any order."""
+        start = time.perf_counter()
+        yield 0, self.render_rows(0, 1, samples)
+        if workers is None:
+            rest = (time.perf_counter() - start) * (height - 1)
+            workers = _core_count() if rest > PARALLEL_MIN_SECONDS else 1
+        blocks = _row_blocks(1, height, workers)
+        reason = _why_not_parallel(self) if workers > 1 and len(blocks) > 1 else None
+        if reason:
+            print(f"PyRT: rendering in one process: {reason}", file=sys.stderr)
+        if workers == 1 or len(blocks) <= 1 or reason:
+            for y0, y1 in blocks:
+                yield y0, self.render_rows(y0, y1, samples)
+            return
+        pending = dict.fromkeys(blocks)
+        pool = ProcessPoolExecutor(min(workers, len(blocks)), initializer=_start_worker,
+                                   initargs=(pickle.dumps(self),))
+        try:
+            futures = {pool.submit(_render_block, y0, y1, samples): (y0, y1)
+                       for y0, y1 in blocks}
+            for future in as_completed(futures):
+                rows = future.result()
+                del pending[futures[future]]
+                yield futures[future][0], rows
+        except BrokenProcessPool:
+            print("PyRT: rendering in one process: the worker processes could not start. "
+                  "If this script runs on Windows or macOS (or with the 'spawn' start "
+                  "method), put the code that builds and renders the scene under\n"
+                  "    if __name__ == \"__main__\":", file=sys.stderr)
+            for y0, y1 in pending:
+                yield y0, self.render_rows(y0, y1, samples)
+        finally:
+            pool.shutdown(wait=False, cancel_futures=True)
+
+
+# ------------------------------------------------------------------------------------------
+# Rendering helpers: sampling, worker processes, checks
+# ------------------------------------------------------------------------------------------
+_CENTRE = ((0.5, 0.5),)
+
+
+def _pixel_offsets(samples, y, width):
+    """For each pixel of row y, the (u, v) points inside it that are sampled.
+
+    One sample is the pixel centre. N samples form a jittered grid of a x b cells (a*b = N,
+    as square as N allows): one random point in each cell, so the samples cover the pixel
+    evenly. The random numbers depend only on the row, so an image is the same on every run
+    and for any number of workers."""
+    if samples == 1:
+        return [_CENTRE] * width
+    a = max(d for d in range(1, int(sqrt(samples)) + 1) if samples % d == 0)
+    b = samples // a
+    jitter = np.random.default_rng((SAMPLE_SEED, y)).random((width, samples, 2))
+    cell = np.arange(samples)
+    u = (cell % b + jitter[:, :, 0]) / b
+    v = (cell // b + jitter[:, :, 1]) / a
+    return np.stack((u, v), axis=2).tolist()
+
+
+def _check_samples(samples):
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
+        raise ValueError(f"render: samples_per_pixel must be a whole number >= 1, "
+                         f"got {samples!r}")
+    return int(samples)
+
+
+def _check_workers(workers):
+    if workers is None:
+        return None
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise ValueError(f"render: workers must be None (all cores) or a whole number >= 1, "
+                         f"got {workers!r}")
+    return int(workers)
+
+
+def _check_writable(folder):
+    """Fails before the render, not after it, when the images cannot be saved."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as error:
+        raise PermissionError(f"render: cannot write the images to {str(folder)!r} "
+                              f"({error.strerror or error}); choose another output folder"
+                              ) from None
+
+
+def _report_non_finite(image, name):
+    bad = ~np.isfinite(image).all(axis=2)
+    count = int(bad.sum())
+    if count:
+        y, x = np.argwhere(bad)[0]
+        print(f"PyRT warning: {name}.compute_color returned NaN or infinite values for "
+              f"{count} pixel(s), the first at pixel ({x}, {y}); the PNG shows them as the "
+              "image's darkest (NaN) or brightest (infinity) colour", file=sys.stderr)
+
+
+def _core_count():
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
+
+
+def _row_blocks(y0, y1, workers):
+    """Rows y0 .. y1-1 cut into about 16 blocks per worker, so that the workers stay busy
+    until the end even when some rows cost more than others."""
+    step = max(1, (y1 - y0) // (workers * 16))
+    return [(y, min(y + step, y1)) for y in range(y0, y1, step)]
+
+
+def _why_not_parallel(integrator):
+    """Why this render cannot use worker processes, or None when it can."""
+    trace = sys.gettrace()
+    tracer_module = getattr(trace, "__module__", None) or type(trace).__module__
+    if "debugpy" in sys.modules or "pydevd" in sys.modules or (
+            trace is not None and not tracer_module.startswith("coverage")):
+        return "a debugger is attached (so that breakpoints in compute_color work)"
+    try:
+        pickle.dumps(integrator)
+    except Exception as error:  # pickle raises several types, all meaning the same here
+        return (f"the integrator or its scene cannot be sent to worker processes ({error}); "
+                "attributes such as lambdas, open files or generators prevent it")
+    return None
+
+
+_worker_integrator = None
+
+
+def _start_worker(payload):
+    global _worker_integrator
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C is handled once, by the main process
+    _worker_integrator = pickle.loads(payload)
+
+
+def _render_block(y0, y1, samples):
+    return _worker_integrator.render_rows(y0, y1, samples)
+
+
+# ------------------------------------------------------------------------------------------
+# Lazy integrator (Assignment 1.1)
+# ------------------------------------------------------------------------------------------
+class LazyIntegrator(Integrator):
+    """Colours pixel (x, y) by its position: (x/width, y/height, 0), red growing to the
+    right and green downwards. It traces no rays, and its PNG shows the linear values
+    without tonemapping, as Figure 2 of the course does."""
+
+    tonemap = False
+
+    def __init__(self, filename_, experiment_name=""):
+        super().__init__(filename_ + "_Lazy", experiment_name)
+
+    def pixel_color(self, x, y, u=0.5, v=0.5):
+        camera = self.scene.camera
+        return RGBColor((x + u - 0.5) / camera.width, (y + v - 0.5) / camera.height, 0.0)
+
+    def compute_color(self, ray):
+        """A ray carries no pixel position, so on its own it gets BLACK (see pixel_color)."""
+        return BLACK
+
+
+# ------------------------------------------------------------------------------------------
+# Intersection integrator (Assignment 1.2)
+# ------------------------------------------------------------------------------------------
+class IntersectionIntegrator(Integrator):
+    """RED where the ray hits any object, BLACK where it escapes."""
+
+    def __init__(self, filename_, experiment_name=""):
+        super().__init__(filename_ + "_Intersection", experiment_name)
+
+    def compute_color(self, ray):
+        return RED if self.scene.any_hit(ray) else BLACK
+
+
+# ------------------------------------------------------------------------------------------
+# Depth and Normal integrators (Assignment 1.3)
+# ------------------------------------------------------------------------------------------
+class DepthIntegrator(Integrator):
+    """Grey c = max(1 - hit_distance / max_depth, 0) at the closest hit: white close to the
+    camera, black at max_depth and beyond or on a miss."""
+
+    def __init__(self, filename_, max_depth_=10, experiment_name=""):
+        super().__init__(filename_ + "_Depth", experiment_name)
+        if isinstance(max_depth_, bool) or not isinstance(max_depth_, (int, float, np.number)) \
+                or not 0.0 < max_depth_ < INFINITY:
+            raise ValueError(f"DepthIntegrator: max_depth_ must be a positive finite distance, "
+                             f"got {max_depth_!r}")
+        self.max_depth = max_depth_
+
+    def compute_color(self, ray):
+        hit = self.scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        c = max(1.0 - hit.hit_distance / self.max_depth, 0.0)
+        return RGBColor(c, c, c)
+
+
+class NormalIntegrator(Integrator):
+    """The closest hit's unit normal n shown as a colour, c = (n + (1, 1, 1)) / 2, which
+    maps each component from [-1, 1] to [0, 1]."""
+
+    def __init__(self, filename_, experiment_name=""):
+        super().__init__(filename_ + "_Normal", experiment_name)
+
+    def compute_color(self, ray):
+        hit = self.scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        n = hit.normal
+        return RGBColor((n.x + 1.0) / 2.0, (n.y + 1.0) / 2.0, (n.z + 1.0) / 2.0)
+
+
+# ------------------------------------------------------------------------------------------
+# Phong integrator (Assignment 1.4)
+# ------------------------------------------------------------------------------------------
+class PhongIntegrator(Integrator):
+    """The course's Phong model with Lambertian surfaces, at the closest hit p with normal n:
+
+        colour = kd (x) i_a + sum over the point lights visible from p of
+                 intensity (x) BRDF.get_value(wi, wo, n) / r^2
+
+    wi is the unit direction from p to the light, r its distance, wo the direction back
+    along the ray, (x) the per-channel product. A light is visible when no object lies
+    between p and the light; one behind the surface (n.wi <= 0) cannot contribute, so it
+    costs no shadow ray. There is no specular term."""
+
+    def __init__(self, filename_, experiment_name=""):
+        super().__init__(filename_ + "_Phong", experiment_name)
+
+    def compute_color(self, ray):
+        scene = self.scene
+        hit = scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        brdf = scene.object_list[hit.primitive_index].BRDF
+        if brdf is None:
+            raise ValueError(f"PhongIntegrator: object {hit.primitive_index} of the scene has "
+                             "no BRDF; call obj.set_BRDF(Lambertian(RGBColor(...))) on it")
+        kd, i_a = brdf.kd, scene.i_a
+        r, g, b = kd.r * i_a.r, kd.g * i_a.g, kd.b * i_a.b
+        p, n = hit.hit_point, hit.normal
+        px, py, pz, nx, ny, nz = p.x, p.y, p.z, n.x, n.y, n.z
+        d = ray.d
+        wo = Vector3D(-d.x, -d.y, -d.z)
+        offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + hit.hit_distance)
+        # Shadow rays start just above the surface (on the light's side of it) instead of
+        # relying on a fixed t_min, which would be too large for tiny scenes and too
+        # small for huge ones.
+        sx, sy, sz = px + nx * offset, py + ny * offset, pz + nz * offset
+        for light in scene.pointLights:
+            pos = light.pos
+            lx, ly, lz = pos.x - px, pos.y - py, pos.z - pz
+            # The light's height above the surface: at or below `offset` it is behind the
+            # surface or lies on it, and lights no part of it.
+            if lx * nx + ly * ny + lz * nz <= offset:
+                continue
+            r2 = lx * lx + ly * ly + lz * lz
+            distance = sqrt(r2)
+            wx, wy, wz = lx / distance, ly / distance, lz / distance
+            if scene.occluded(sx, sy, sz, wx, wy, wz, 0.0,
+                              distance * (1.0 - SHADOW_EPSILON) - offset):
+                continue
+            f = brdf.get_value(Vector3D(wx, wy, wz), wo, n)
+            intensity = light.intensity
+            r += intensity.r * f.r / r2
+            g += intensity.g * f.g / r2
+            b += intensity.b * f.b / r2
+        return RGBColor(r, g, b)
