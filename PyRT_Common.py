@@ -182,27 +182,40 @@ class RGBColor:
         return f"RGBColor({float(self.r)!r}, {float(self.g)!r}, {float(self.b)!r})"
 
 
-class _ConstantColor(RGBColor):
-    """A shared colour such as BLACK: assigning to its channels would change it everywhere."""
+class _Constant:
+    """A shared value (BLACK, the origin, a miss, ...): assigning to its fields would change
+    it for everyone who uses it, so that raises an AttributeError instead."""
 
     __slots__ = ()
 
-    def __init__(self, r, g, b):
-        object.__setattr__(self, "r", float(r))
-        object.__setattr__(self, "g", float(g))
-        object.__setattr__(self, "b", float(b))
+    def __init__(self, *values):
+        for name, value in zip(self._fields, values):
+            object.__setattr__(self, name, value)
+
+    def _values(self):
+        return tuple(getattr(self, name) for name in self._fields)
 
     def __setattr__(self, name, value):
         raise AttributeError(
-            f"{self!r} is a shared constant (BLACK, WHITE, GREEN or RED) and cannot be changed; "
-            f"make your own copy first, e.g. color = RGBColor({self.r}, {self.g}, {self.b})")
+            f"{self!r} is a shared constant and cannot be changed; make your own copy first, "
+            f"e.g. {type(self).__mro__[2].__name__}{self._values()}")
+
+    def __reduce__(self):
+        return (type(self), self._values())
+
+
+class _ConstantColor(_Constant, RGBColor):
+    __slots__ = ()
+    _fields = RGBColor.__slots__
 
     def clamp(self, lo, hi):
         if not (lo <= self.r <= hi and lo <= self.g <= hi and lo <= self.b <= hi):
-            self.r = None  # raises the AttributeError above
+            self.r = None  # raises: a shared constant cannot be clamped in place
 
-    def __reduce__(self):
-        return (_ConstantColor, (self.r, self.g, self.b))
+
+class _ConstantVector(_Constant, Vector3D):
+    __slots__ = ()
+    _fields = Vector3D.__slots__
 
 
 BLACK = _ConstantColor(0.0, 0.0, 0.0)
@@ -210,7 +223,9 @@ WHITE = _ConstantColor(1.0, 1.0, 1.0)
 GREEN = _ConstantColor(0.0, 1.0, 0.0)
 RED = _ConstantColor(1.0, 0.0, 0.0)
 
-_NOT_SCALARS = frozenset((Vector3D, RGBColor, _ConstantColor))
+_ZERO = _ConstantVector(0.0, 0.0, 0.0)  # the default point and normal of a HitData
+
+_NOT_SCALARS = frozenset((Vector3D, RGBColor, _ConstantColor, _ConstantVector))
 
 
 # ------------------------------------------------------------------------------------------
@@ -253,11 +268,13 @@ class HitData:
 
     __slots__ = ("has_hit", "hit_point", "normal", "hit_distance", "primitive_index")
 
-    def __init__(self, has_hit=False, hit_point=None, normal=None, hit_distance=HUGEVALUE,
+    # The default point and normal are one shared zero vector that cannot be changed, so
+    # sharing it is safe, and a miss costs one object instead of three.
+    def __init__(self, has_hit=False, hit_point=_ZERO, normal=_ZERO, hit_distance=HUGEVALUE,
                  primitive_index=-1):
         self.has_hit = has_hit
-        self.hit_point = Vector3D(0.0, 0.0, 0.0) if hit_point is None else hit_point
-        self.normal = Vector3D(0.0, 0.0, 0.0) if normal is None else normal
+        self.hit_point = hit_point
+        self.normal = normal
         self.hit_distance = hit_distance
         self.primitive_index = primitive_index
 
@@ -266,6 +283,16 @@ class HitData:
             return "HitData(has_hit=False)"
         return (f"HitData(has_hit=True, hit_point={self.hit_point!r}, normal={self.normal!r}, "
                 f"hit_distance={self.hit_distance!r}, primitive_index={self.primitive_index})")
+
+
+class _ConstantHit(_Constant, HitData):
+    __slots__ = ()
+    _fields = HitData.__slots__
+
+
+# What closest_hit returns on a miss: one shared, unchangeable HitData instead of a new one
+# for every ray that escapes.
+_MISS = _ConstantHit(False, _ZERO, _ZERO, HUGEVALUE, -1)
 
 
 # ------------------------------------------------------------------------------------------

@@ -15,6 +15,7 @@ from math import copysign, isfinite, tan
 from pathlib import Path
 
 from PyRT_Common import *
+from PyRT_Common import _MISS
 
 # ------------------------------------------------------------------------------------------
 # Robustness constants
@@ -25,6 +26,11 @@ UNIT_TOLERANCE = 1e-12
 # Parallelogram edge test tolerance, in units of the sides: rounding in the hit point must
 # not open cracks along edges and corners, where neighbouring walls meet.
 EDGE_TOLERANCE = 1e-9
+# closest_hit: a later object must be nearer than the nearest so far by more than this
+# fraction of the distance. Where two surfaces meet or overlap (the edges of the Cornell box
+# lie exactly on the image's diagonals), rounding would otherwise pick either of them, one
+# way on one machine and the other way on the next; this way the first in object_list wins.
+TIE_TOLERANCE = 1e-10
 
 
 # ------------------------------------------------------------------------------------------
@@ -65,20 +71,16 @@ def _check_positive(owner, name, value):
     return value
 
 
-def _unit_ray(ray):
-    """The ray as floats (ox, oy, oz, dx, dy, dz) with d scaled to unit length."""
-    o, d = ray.o, ray.d
+def _unit(d):
+    """The components of d / |d|, or a ValueError when d has no direction."""
     dx, dy, dz = d.x, d.y, d.z
-    dd = dx * dx + dy * dy + dz * dz
-    if not abs(dd - 1.0) <= UNIT_TOLERANCE:  # also true for NaN: checked below
-        big = max(abs(dx), abs(dy), abs(dz))
-        if not 0.0 < big < float("inf"):
-            raise ValueError(f"the ray direction must be a non-zero finite vector, got {d!r}; "
-                             "set ray.d before tracing the ray")
-        dx, dy, dz = dx / big, dy / big, dz / big  # rescale first: dd may over/underflow
-        inv = 1.0 / sqrt(dx * dx + dy * dy + dz * dz)
-        dx, dy, dz = dx * inv, dy * inv, dz * inv
-    return o.x, o.y, o.z, dx, dy, dz
+    big = max(abs(dx), abs(dy), abs(dz))
+    if not 0.0 < big < float("inf"):
+        raise ValueError(f"the ray direction must be a non-zero finite vector, got {d!r}; "
+                         "set ray.d before tracing the ray")
+    dx, dy, dz = dx / big, dy / big, dz / big  # rescaled first: |d|^2 may over/underflow
+    length = sqrt(dx * dx + dy * dy + dz * dz)
+    return dx / length, dy / length, dz / length
 
 
 class _Shape:
@@ -135,9 +137,16 @@ class Scene:
                             f"got {light!r}")
         self.pointLights.append(light)
 
+    # any_hit and closest_hit run for every ray: they read the ray once into floats, use
+    # its direction as it is when it is unit length to within rounding (camera and shadow
+    # rays are), and normalise it otherwise.
     def any_hit(self, ray):
         """True when the ray hits any object at a distance in [ray.t_min, ray.t_max]."""
-        return self.occluded(*_unit_ray(ray), ray.t_min, ray.t_max)
+        o, d = ray.o, ray.d
+        dx, dy, dz = d.x, d.y, d.z
+        if not abs(dx * dx + dy * dy + dz * dz - 1.0) <= UNIT_TOLERANCE:
+            dx, dy, dz = _unit(d)
+        return self.occluded(o.x, o.y, o.z, dx, dy, dz, ray.t_min, ray.t_max)
 
     def occluded(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
         """any_hit for a ray given as floats with a unit direction: stops at the first hit."""
@@ -149,17 +158,22 @@ class Scene:
     def closest_hit(self, ray):
         """The nearest hit in [ray.t_min, ray.t_max], as a HitData whose primitive_index is
         the object's index in object_list; a HitData with has_hit False on a miss."""
-        ox, oy, oz, dx, dy, dz = _unit_ray(ray)
+        o, d = ray.o, ray.d
+        dx, dy, dz = d.x, d.y, d.z
+        if not abs(dx * dx + dy * dy + dz * dz - 1.0) <= UNIT_TOLERANCE:
+            dx, dy, dz = _unit(d)
+        ox, oy, oz = o.x, o.y, o.z
         t_min, t_max = ray.t_min, ray.t_max
-        nearest = -1
-        for index, obj in enumerate(self.object_list):
+        nearest = None
+        for obj in self.object_list:
             t = obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max)
             if t is not None:
-                t_max, nearest = t, index  # later objects must now beat this distance
-        if nearest < 0:
-            return HitData()
-        hit = self.object_list[nearest]._hit_data(ox, oy, oz, dx, dy, dz, t_max)
-        hit.primitive_index = nearest
+                nearest, distance = obj, t
+                t_max = t - t * TIE_TOLERANCE
+        if nearest is None:
+            return _MISS
+        hit = nearest._hit_data(ox, oy, oz, dx, dy, dz, distance)
+        hit.primitive_index = self.object_list.index(nearest)
         return hit
 
     def set_pixel(self, pixel_val, x, y):
@@ -272,11 +286,11 @@ class _FastPrimitive(Primitive):
     """A built-in primitive: intersect() is the public face of _distance and _hit_data."""
 
     def intersect(self, ray):
-        ox, oy, oz, dx, dy, dz = _unit_ray(ray)
-        t = self._distance(ox, oy, oz, dx, dy, dz, ray.t_min, ray.t_max)
+        o, (dx, dy, dz) = ray.o, _unit(ray.d)
+        t = self._distance(o.x, o.y, o.z, dx, dy, dz, ray.t_min, ray.t_max)
         if t is None:
-            return HitData()
-        return self._hit_data(ox, oy, oz, dx, dy, dz, t)
+            return _MISS
+        return self._hit_data(o.x, o.y, o.z, dx, dy, dz, t)
 
 
 class Sphere(_FastPrimitive):
@@ -303,10 +317,10 @@ class Sphere(_FastPrimitive):
         self._radius = _check_positive("Sphere", "sphere_radius", self._radius)
         self.radius_squared = self._radius * self._radius
         c = self._origin
-        self._k = (c.x, c.y, c.z, self.radius_squared)
+        self._k = (c.x, c.y, c.z, self.radius_squared, self._radius)
 
     def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
-        cx, cy, cz, r2 = self._k
+        cx, cy, cz, r2, r = self._k
         fx, fy, fz = ox - cx, oy - cy, oz - cz
         b = fx * dx + fy * dy + fz * dz
         lx, ly, lz = fx - b * dx, fy - b * dy, fz - b * dz
@@ -316,11 +330,10 @@ class Sphere(_FastPrimitive):
         q = -b - copysign(sqrt(disc), b)
         if q == 0.0:  # b == disc == 0: the ray starts on the sphere, touching it
             t0 = t1 = 0.0
-        else:
-            t0 = (fx * fx + fy * fy + fz * fz - r2) / q
-            t1 = q
-            if t0 > t1:
-                t0, t1 = t1, t0
+        elif b < 0.0:  # q = |b| + sqrt(disc) is the far root
+            t0, t1 = (fx * fx + fy * fy + fz * fz - r2) / q, q
+        else:          # q = -(b + sqrt(disc)) is the near root
+            t0, t1 = q, (fx * fx + fy * fy + fz * fz - r2) / q
         if t_min <= t0 <= t_max:
             return t0
         if t_min <= t1 <= t_max:
@@ -328,14 +341,14 @@ class Sphere(_FastPrimitive):
         return None
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
-        cx, cy, cz, r2 = self._k
+        cx, cy, cz, r2, r = self._k
         # Rounding leaves o + d*t slightly off the surface; project it back onto the sphere.
         vx, vy, vz = ox + dx * t - cx, oy + dy * t - cy, oz + dz * t - cz
-        length = sqrt(vx * vx + vy * vy + vz * vz)
-        if length == 0.0:  # only a sphere far below the precision of its position gets here
+        try:
+            inv = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
+        except ZeroDivisionError:  # a sphere far below the precision of its position
             return HitData(True, Vector3D(cx, cy, cz), Vector3D(-dx, -dy, -dz), t)
-        nx, ny, nz = vx / length, vy / length, vz / length
-        r = self._radius
+        nx, ny, nz = vx * inv, vy * inv, vz * inv
         return HitData(True, Vector3D(cx + nx * r, cy + ny * r, cz + nz * r),
                        Vector3D(nx, ny, nz), t)
 
@@ -510,6 +523,8 @@ class Camera:
         self.aspect_ratio = self._width / self._height
         self._scale_y = tan(self._vertical_fov / 2.0)
         self._scale_x = self._scale_y * self.aspect_ratio
+        self._row_x = [(2.0 * (x + 0.5) / self._width - 1.0) * self._scale_x
+                       for x in range(self._width)]
 
     def get_direction(self, x, y, u=0.5, v=0.5):
         """The unit direction through the point (u, v) of pixel (x, y); (0.5, 0.5), the
@@ -517,5 +532,15 @@ class Camera:
         anti-aliasing."""
         px = (2.0 * (x + u) / self._width - 1.0) * self._scale_x
         py = (1.0 - 2.0 * (y + v) / self._height) * self._scale_y
-        length = sqrt(px * px + py * py + 1.0)
+        length = sqrt(px * px + (py * py + 1.0))
         return Vector3D(px / length, py / length, -1.0 / length)
+
+    def row_directions(self, y):
+        """get_direction(x, y) for every x of row y, computed in one go for speed."""
+        py = (1.0 - 2.0 * (y + 0.5) / self._height) * self._scale_y
+        py2 = py * py + 1.0
+        directions = []
+        for px in self._row_x:
+            length = sqrt(px * px + py2)
+            directions.append(Vector3D(px / length, py / length, -1.0 / length))
+        return directions

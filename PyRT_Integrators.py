@@ -19,7 +19,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from PyRT_Common import *
-from PyRT_Common import __all__ as _common_names
+from PyRT_Common import __all__ as _common_names, _ConstantVector
 
 __all__ = _common_names + [
     "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
@@ -27,6 +27,9 @@ __all__ = _common_names + [
 ]
 
 INFINITY = float("inf")
+# The camera sits at the origin. All camera rays share this one unchangeable vector as their
+# origin, which saves creating one per pixel.
+CAMERA_ORIGIN = _ConstantVector(0.0, 0.0, 0.0)
 # A shadow ray stops this fraction short of its light, so a light lying exactly on a
 # surface is not hidden by that surface.
 SHADOW_EPSILON = 1e-6
@@ -67,12 +70,6 @@ class Integrator(ABC):
     @abstractmethod
     def compute_color(self, ray):
         """The RGBColor arriving along ray."""
-
-    def pixel_color(self, x, y, u=0.5, v=0.5):
-        """The colour seen through the point (u, v) of pixel (x, y); (0.5, 0.5) is its
-        centre. Camera rays start at no surface, so they see objects at any distance > 0."""
-        direction = self.scene.camera.get_direction(x, y, u, v)
-        return self.compute_color(Ray(direction=direction, tmax=INFINITY, tmin=0.0))
 
     def render(self, workers=None, samples_per_pixel=1, progress=True):
         """Renders every pixel and saves the image.
@@ -115,26 +112,50 @@ class Integrator(ABC):
 
     def render_rows(self, y0, y1, samples_per_pixel=1):
         """Rows y0 .. y1-1 of the image as an array of shape (y1 - y0, width, 3)."""
-        width = self.scene.camera.width
-        pixel_color = self.pixel_color
-        rows = []
-        for y in range(y0, y1):
-            offsets = _pixel_offsets(samples_per_pixel, y, width)
-            row = []
-            for x in range(width):
-                r = g = b = 0.0
-                for u, v in offsets[x]:
-                    color = pixel_color(x, y, u, v)
-                    try:
-                        r += color.r
-                        g += color.g
-                        b += color.b
-                    except (AttributeError, TypeError):
-                        raise self._not_a_color(color, x, y) from None
-                row.append((r / samples_per_pixel, g / samples_per_pixel,
-                            b / samples_per_pixel))
-            rows.append(row)
-        return np.array(rows, dtype=float)
+        rows = [self.row_colors(y, samples_per_pixel) for y in range(y0, y1)]
+        try:
+            return np.array(rows, dtype=float).reshape(y1 - y0, -1, 3)
+        except (TypeError, ValueError):
+            raise self._first_bad_color(rows, y0) from None
+
+    def row_colors(self, y, samples_per_pixel=1):
+        """The channels of row y, flat: [r0, g0, b0, r1, g1, b1, ...]. Pixel x gets the
+        colour arriving along the camera ray through it, averaged over samples_per_pixel
+        rays. (A flat list of floats becomes an array three times faster than a list of
+        (r, g, b) tuples.)
+
+        Camera rays start at no surface, so t_min = 0: they see objects at any distance."""
+        camera = self.scene.camera
+        compute_color = self.compute_color
+        row = []
+        if samples_per_pixel == 1:
+            for direction in camera.row_directions(y):
+                color = compute_color(Ray(CAMERA_ORIGIN, direction, INFINITY, 0.0))
+                try:
+                    row += (color.r, color.g, color.b)
+                except AttributeError:
+                    raise self._not_a_color(color, len(row) // 3, y) from None
+            return row
+        for x, offsets in enumerate(_pixel_offsets(samples_per_pixel, y, camera.width)):
+            r = g = b = 0.0
+            for u, v in offsets:
+                color = compute_color(Ray(CAMERA_ORIGIN, camera.get_direction(x, y, u, v),
+                                          INFINITY, 0.0))
+                try:
+                    r += color.r
+                    g += color.g
+                    b += color.b
+                except (AttributeError, TypeError):
+                    raise self._not_a_color(color, x, y) from None
+            row += (r / samples_per_pixel, g / samples_per_pixel, b / samples_per_pixel)
+        return row
+
+    def _first_bad_color(self, rows, y0):
+        for y, row in enumerate(rows, y0):
+            for i, channel in enumerate(row):
+                if not isinstance(channel, (int, float, np.number)):
+                    return self._not_a_color(RGBColor(*row[i - i % 3:i - i % 3 + 3]), i // 3, y)
+        return ValueError("render: the colours of the image do not form an array")
 
     def _not_a_color(self, color, x, y):
         hint = " (is a return statement missing?)" if color is None else ""
@@ -191,18 +212,13 @@ class Integrator(ABC):
 # ------------------------------------------------------------------------------------------
 # Rendering helpers: sampling, worker processes, checks
 # ------------------------------------------------------------------------------------------
-_CENTRE = ((0.5, 0.5),)
-
-
 def _pixel_offsets(samples, y, width):
     """For each pixel of row y, the (u, v) points inside it that are sampled.
 
-    One sample is the pixel centre. N samples form a jittered grid of a x b cells (a*b = N,
+    N samples form a jittered grid of a x b cells (a*b = N,
     as square as N allows): one random point in each cell, so the samples cover the pixel
     evenly. The random numbers depend only on the row, so an image is the same on every run
     and for any number of workers."""
-    if samples == 1:
-        return [_CENTRE] * width
     a = max(d for d in range(1, int(sqrt(samples)) + 1) if samples % d == 0)
     b = samples // a
     jitter = np.random.default_rng((SAMPLE_SEED, y)).random((width, samples, 2))
@@ -304,12 +320,14 @@ class LazyIntegrator(Integrator):
     def __init__(self, filename_, experiment_name=""):
         super().__init__(filename_ + "_Lazy", experiment_name)
 
-    def pixel_color(self, x, y, u=0.5, v=0.5):
+    def row_colors(self, y, samples_per_pixel=1):
+        """One exact value per pixel, however many samples are asked for."""
         camera = self.scene.camera
-        return RGBColor((x + u - 0.5) / camera.width, (y + v - 0.5) / camera.height, 0.0)
+        green = y / camera.height
+        return [c for x in range(camera.width) for c in (x / camera.width, green, 0.0)]
 
     def compute_color(self, ray):
-        """A ray carries no pixel position, so on its own it gets BLACK (see pixel_color)."""
+        """A ray carries no pixel position, so on its own it gets BLACK (see row_colors)."""
         return BLACK
 
 
@@ -345,8 +363,8 @@ class DepthIntegrator(Integrator):
         hit = self.scene.closest_hit(ray)
         if not hit.has_hit:
             return BLACK
-        c = max(1.0 - hit.hit_distance / self.max_depth, 0.0)
-        return RGBColor(c, c, c)
+        c = 1.0 - hit.hit_distance / self.max_depth
+        return RGBColor(c, c, c) if c > 0.0 else BLACK  # c = max(1 - distance/max_depth, 0)
 
 
 class NormalIntegrator(Integrator):
@@ -397,9 +415,10 @@ class PhongIntegrator(Integrator):
         d = ray.d
         wo = Vector3D(-d.x, -d.y, -d.z)
         offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + hit.hit_distance)
-        # Shadow rays start just above the surface (on the light's side of it) instead of
-        # relying on a fixed t_min, which would be too large for tiny scenes and too
-        # small for huge ones.
+        # Shadow rays start just above the surface (on the light's side of it) and ignore
+        # the first `offset` of their way, which skips the surface itself and, on an edge
+        # where two walls meet, the other wall. Both scale with the scene, where a fixed
+        # t_min would be too large for tiny scenes and too small for huge ones.
         sx, sy, sz = px + nx * offset, py + ny * offset, pz + nz * offset
         for light in scene.pointLights:
             pos = light.pos
@@ -411,7 +430,7 @@ class PhongIntegrator(Integrator):
             r2 = lx * lx + ly * ly + lz * lz
             distance = sqrt(r2)
             wx, wy, wz = lx / distance, ly / distance, lz / distance
-            if scene.occluded(sx, sy, sz, wx, wy, wz, 0.0,
+            if scene.occluded(sx, sy, sz, wx, wy, wz, offset,
                               distance * (1.0 - SHADOW_EPSILON) - offset):
                 continue
             f = brdf.get_value(Vector3D(wx, wy, wz), wo, n)
