@@ -150,6 +150,21 @@ def _has_display():
     return backend not in ("agg", "pdf", "ps", "svg", "pgf", "cairo", "template")
 
 
+def positive_arg(kind):
+    """An argparse type: a number of the given kind (int or float) greater than 0."""
+    def convert(text):
+        try:
+            value = kind(text)
+        except ValueError:
+            value = None
+        if value is None or not 0 < value < float("inf"):
+            what = "a whole number" if kind is int else "a number"
+            raise argparse.ArgumentTypeError(f"must be {what} greater than 0, got {text!r}")
+        return value
+    convert.__name__ = kind.__name__  # argparse names the type in its messages
+    return convert
+
+
 def parse_args(argv):
     parser = argparse.ArgumentParser(
         description="Render a scene of the course with PyRT. With no options: Phong on the "
@@ -160,17 +175,19 @@ def parse_args(argv):
     parser.add_argument("--scene", choices=SCENES, default="cornell",
                         help="cornell: the Cornell box of Figure 1; sphere: the sphere above "
                              "a floor of Figures 2-5 (default: cornell)")
-    parser.add_argument("--width", type=int, default=500, help="image width in pixels (500)")
-    parser.add_argument("--height", type=int, default=500, help="image height in pixels (500)")
-    parser.add_argument("--max-depth", type=float, default=None,
+    parser.add_argument("--width", type=positive_arg(int), default=500,
+                        help="image width in pixels (default 500)")
+    parser.add_argument("--height", type=positive_arg(int), default=500,
+                        help="image height in pixels (default 500)")
+    parser.add_argument("--max-depth", type=positive_arg(float), default=None,
                         help="distance drawn black by the depth integrator (default 10; "
                              "Figure 4 uses 5)")
     parser.add_argument("--out", default=DIRECTORY,
                         help="folder for the images (default: out/ next to this script)")
-    parser.add_argument("--workers", type=int, default=None,
+    parser.add_argument("--workers", type=positive_arg(int), default=None,
                         help="processes that render (default: all cores; 1: this process "
                              "only, needed to stop at breakpoints)")
-    parser.add_argument("--spp", type=int, default=1,
+    parser.add_argument("--spp", type=positive_arg(int), default=1,
                         help="samples (rays) per pixel, averaged: more smooth jagged "
                              "edges and cost proportionally more time (default 1)")
     parser.add_argument("--no-window", action="store_true",

@@ -5,6 +5,7 @@ ray? ``render()`` asks it once per pixel, for the ray from the camera through th
 centre, and saves the image. Write your own integrator by subclassing ``Integrator`` and
 overriding ``compute_color``.
 """
+import copy
 import multiprocessing
 import os
 import pickle
@@ -179,18 +180,20 @@ class Integrator(ABC):
         yield 0, self.render_rows(0, 1, samples)
         if workers is None:
             rest = (time.perf_counter() - start) * (height - 1)
-            workers = _core_count() if rest > PARALLEL_MIN_SECONDS else 1
+            workers = usable_cores() if rest > PARALLEL_MIN_SECONDS else 1
         blocks = _row_blocks(1, height, workers)
-        reason = _why_not_parallel(self) if workers > 1 and len(blocks) > 1 else None
-        if reason:
-            print(f"PyRT: rendering in one process: {reason}", file=sys.stderr)
-        if workers == 1 or len(blocks) <= 1 or reason:
+        payload = None
+        if workers > 1 and len(blocks) > 1:
+            payload, reason = _worker_payload(self)
+            if reason:
+                print(f"PyRT: rendering in one process: {reason}", file=sys.stderr)
+        if payload is None:
             for y0, y1 in blocks:
                 yield y0, self.render_rows(y0, y1, samples)
             return
         pending = dict.fromkeys(blocks)
         pool = ProcessPoolExecutor(min(workers, len(blocks)), initializer=_start_worker,
-                                   initargs=(pickle.dumps(self),))
+                                   initargs=(payload,))
         try:
             futures = {pool.submit(_render_block, y0, y1, samples): (y0, y1)
                        for y0, y1 in blocks}
@@ -266,7 +269,7 @@ def _report_non_finite(image, name):
               "image's darkest (NaN) or brightest (infinity) colour", file=sys.stderr)
 
 
-def _core_count():
+def usable_cores():
     if hasattr(os, "sched_getaffinity"):
         return len(os.sched_getaffinity(0))
     return os.cpu_count() or 1
@@ -279,19 +282,24 @@ def _row_blocks(y0, y1, workers):
     return [(y, min(y + step, y1)) for y in range(y0, y1, step)]
 
 
-def _why_not_parallel(integrator):
-    """Why this render cannot use worker processes, or None when it can."""
+def _worker_payload(integrator):
+    """(the pickled integrator for the worker processes, None), or (None, why they cannot
+    be used). The workers get the scene without its image, which they do not need."""
     trace = sys.gettrace()
     tracer_module = getattr(trace, "__module__", None) or type(trace).__module__
     if "debugpy" in sys.modules or "pydevd" in sys.modules or (
             trace is not None and not tracer_module.startswith("coverage")):
-        return "a debugger is attached (so that breakpoints in compute_color work)"
+        return None, "a debugger is attached (so that breakpoints in compute_color work)"
+    scene = copy.copy(integrator.scene)
+    scene.rendered_image = None
+    integrator = copy.copy(integrator)
+    integrator.scene = scene
     try:
-        pickle.dumps(integrator)
+        return pickle.dumps(integrator), None
     except Exception as error:  # pickle raises several types, all meaning the same here
-        return (f"the integrator or its scene cannot be sent to worker processes ({error}); "
-                "attributes such as lambdas, open files or generators prevent it")
-    return None
+        return None, (f"the integrator or its scene cannot be sent to worker processes "
+                      f"({error}); attributes such as lambdas, open files or generators "
+                      "prevent it")
 
 
 _worker_integrator = None

@@ -1,0 +1,77 @@
+"""Renders the course's figures into tests/reference/, the images test_references.py expects.
+
+Every entry of AppRenderer.FIGURES is rendered at 500 x 500 pixels with AppRenderer's own
+scenes and integrators, and its PNG is written to tests/reference/<figure>_<integrator>.png:
+
+    figure1_phong.png         Phong on the Cornell box (Figure 1)
+    figure2_lazy.png          Lazy on the sphere scene (Figure 2)
+    figure3_intersection.png  Intersection on the sphere scene (Figure 3)
+    figure4_depth.png         Depth, max_depth 5, on the sphere scene (Figure 4, left)
+    figure4_normal.png        Normal on the sphere scene (Figure 4, right)
+    figure5_phong.png         Phong on the sphere scene (Figure 5)
+
+These images are the course's expected results, and the tests compare every change with
+them. Regenerate them only when an intended change alters the course images, never to make
+a failing test pass; look at every new image before committing it, and give the reason for
+the change in the commit message.
+
+Run it from the repository's root folder:
+
+    python tests/make_references.py
+"""
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+from typing import NamedTuple, Optional
+
+TESTS = Path(__file__).resolve().parent
+REPO = TESTS.parent
+if str(REPO) not in sys.path:
+    sys.path.insert(0, str(REPO))
+
+import AppRenderer  # noqa: E402  (needs the repository on the import path first)
+
+REFERENCE_DIR = TESTS / "reference"
+SIZE = 500
+
+
+class Figure(NamedTuple):
+    """One image of the course: an entry of AppRenderer.FIGURES."""
+
+    figure: str
+    integrator: str
+    scene: str
+    max_depth: Optional[float]
+
+    @property
+    def name(self):
+        return f"{self.figure}_{self.integrator}"
+
+    @property
+    def reference(self):
+        return REFERENCE_DIR / f"{self.name}.png"
+
+
+FIGURES = [Figure(*entry) for entry in AppRenderer.FIGURES]
+
+
+def render_figure(figure, folder, size=SIZE, workers=None, progress=False):
+    """Renders figure at size x size pixels into folder; returns the path of its PNG."""
+    integrator = AppRenderer.make_integrator(figure.integrator, str(Path(folder) / figure.name),
+                                             figure.max_depth)
+    integrator.add_scene(AppRenderer.SCENES[figure.scene](size, size))
+    integrator.render(workers=workers, progress=progress)
+    return Path(integrator.get_filename() + ".png")
+
+
+def main():
+    REFERENCE_DIR.mkdir(exist_ok=True)
+    with tempfile.TemporaryDirectory() as folder:
+        for figure in FIGURES:
+            shutil.copyfile(render_figure(figure, folder, progress=True), figure.reference)
+            print(f"Wrote {figure.reference.relative_to(REPO)}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,198 @@
+"""AppRenderer.py: its scenes hold the course's numbers, and the script runs from any
+folder, without a display, with the options it documents."""
+import math
+import re
+import shutil
+
+import numpy as np
+import pytest
+
+import AppRenderer
+from helpers import APP, REPO, run_python
+from PyRT_Core import Parallelogram, Sphere
+from PyRT_Integrators import PhongIntegrator
+
+
+def xyz(v):
+    return (v.x, v.y, v.z)
+
+
+def rgb(c):
+    return (c.r, c.g, c.b)
+
+
+def albedo(primitive):
+    """The diffuse colour of a Lambertian primitive: kd * pi."""
+    return pytest.approx([channel * math.pi for channel in rgb(primitive.get_BRDF().kd)],
+                         abs=1e-12)
+
+
+def assert_parallelogram(obj, point, s1, s2):
+    assert isinstance(obj, Parallelogram)
+    assert (xyz(obj.point), xyz(obj.s1), xyz(obj.s2)) == (point, s1, s2)
+
+
+def file_states(folder):
+    return {path.name: path.stat().st_mtime_ns for path in folder.iterdir()}
+
+
+# ------------------------------------------------------------------------------------------
+# Importing
+# ------------------------------------------------------------------------------------------
+def test_importing_app_renderer_renders_and_writes_nothing(tmp_path):
+    out = REPO / "out"
+    before = file_states(out)
+    result = run_python(["-c", "import AppRenderer; print('imported')"], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout == "imported\n"
+    assert list(tmp_path.iterdir()) == []
+    assert file_states(out) == before
+
+
+# ------------------------------------------------------------------------------------------
+# The scenes' numbers, from the spec
+# ------------------------------------------------------------------------------------------
+def test_sphere_test_scene_has_the_course_numbers():
+    scene = AppRenderer.sphere_test_scene()
+    assert rgb(scene.i_a) == (0.5, 0.5, 0.5)
+    sphere, floor = scene.object_list
+    assert isinstance(sphere, Sphere)
+    assert (xyz(sphere.origin), sphere.radius) == ((0, 0, -5), 2)
+    assert albedo(sphere) == (0.8, 0.8, 0.8)
+    assert_parallelogram(floor, (-4, -2, -1), (8, 0, 0), (0, 0, -8))
+    assert albedo(floor) == (0.2, 0.8, 0.2)
+    assert all(rgb(obj.emission) == (0, 0, 0) for obj in scene.object_list)
+    [light] = scene.pointLights
+    assert (xyz(light.pos), rgb(light.intensity)) == ((0, 5, 0), (80, 80, 80))
+    camera = scene.camera
+    assert (camera.width, camera.height) == (500, 500)
+    assert camera.vertical_fov == pytest.approx(math.radians(60))
+    assert scene.rendered_image.shape == (500, 500, 3)
+
+
+def test_sphere_test_scene_area_light_replaces_the_point_light():
+    scene = AppRenderer.sphere_test_scene(areaLS=True)
+    assert scene.pointLights == []
+    assert len(scene.object_list) == 3
+    light = scene.object_list[2]
+    assert_parallelogram(light, (-4, 6, -1), (8, 0, 0), (0, 0, -8))
+    assert rgb(light.emission) == (3.5, 3.5, 3.5)
+    assert rgb(light.get_BRDF().kd) == (0, 0, 0)
+
+
+def test_cornell_box_scene_has_the_course_numbers():
+    # dist 0.75, side 2: z_far = -2.75, ll = (-1, -1, -2.75), ur = (1, 1, -2.75).
+    scene = AppRenderer.cornell_box_scene(0.75, 2)
+    assert rgb(scene.i_a) == (1, 1, 0.3)
+    sphere, back, floor, left, ceiling, right = scene.object_list
+    assert isinstance(sphere, Sphere)
+    assert (xyz(sphere.origin), sphere.radius) == ((0, 0, -1.75), 0.25)
+    assert albedo(sphere) == (0.2, 0.2, 0.7)
+    ll, ur = (-1, -1, -2.75), (1, 1, -2.75)
+    assert_parallelogram(back, ll, (2, 0, 0), (0, 2, 0))
+    assert_parallelogram(floor, ll, (2, 0, 0), (0, 0, 2))
+    assert_parallelogram(left, ll, (0, 2, 0), (0, 0, 2))
+    assert_parallelogram(ceiling, ur, (-2, 0, 0), (0, 0, 2))
+    assert_parallelogram(right, ur, (0, -2, 0), (0, 0, 2))
+    for wall in (back, floor, ceiling):
+        assert albedo(wall) == (0.8, 0.8, 0.8)
+    assert albedo(left) == (0.7, 0.2, 0.2)
+    assert albedo(right) == (0.2, 0.7, 0.2)
+    # Lights at y = side/2 - 0.5 = 0.5, z = -(dist + side/2) = -1.75, x = 0, -0.5, 0.5.
+    assert [xyz(light.pos) for light in scene.pointLights] == [
+        (0, 0.5, -1.75), (-0.5, 0.5, -1.75), (0.5, 0.5, -1.75)]
+    assert all(rgb(light.intensity) == (0.5, 0.5, 0.5) for light in scene.pointLights)
+    camera = scene.camera
+    assert (camera.width, camera.height) == (500, 500)
+    assert camera.vertical_fov == pytest.approx(math.radians(70))
+
+
+def test_cornell_box_area_light_is_a_square_under_the_ceiling():
+    # Corner (-side/4, side/2 - 0.0001, -(dist + side/4)) = (-0.5, 0.9999, -1.25).
+    scene = AppRenderer.cornell_box_scene(0.75, 2, areaLS=True)
+    assert scene.pointLights == []
+    assert len(scene.object_list) == 7
+    light = scene.object_list[6]
+    assert_parallelogram(light, (-0.5, 1 - 0.0001, -1.25), (1, 0, 0), (0, 0, -1))
+    assert rgb(light.emission) == (1, 1, 1)
+    assert rgb(light.get_BRDF().kd) == (0, 0, 0)
+
+
+# ------------------------------------------------------------------------------------------
+# Running the script
+# ------------------------------------------------------------------------------------------
+OPTIONS = ["--integrator", "--scene", "--width", "--height", "--max-depth", "--out",
+           "--workers", "--spp", "--no-window", "--all-figures"]
+
+
+def test_help_exits_zero_and_lists_the_options(tmp_path):
+    result = run_python([APP, "--help"], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    for option in OPTIONS:
+        assert option in result.stdout
+
+
+def test_script_renders_headless_from_another_folder(tmp_path):
+    out = tmp_path / "images"
+    result = run_python([APP, "--width", 16, "--height", 12, "--out", out], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    for suffix in (".png", ".npy", ".hdr"):
+        assert (out / ("rendered_image_Phong" + suffix)).is_file()
+    expected = PhongIntegrator(str(tmp_path / "expected"))
+    expected.add_scene(AppRenderer.cornell_box_scene(0.75, 2, width=16, height=12))
+    expected.render(workers=1, progress=False)
+    assert np.array_equal(np.load(out / "rendered_image_Phong.npy"),
+                          expected.scene.rendered_image)
+
+
+def test_default_output_folder_is_out_next_to_the_script(tmp_path):
+    out = REPO / "out"
+    names = ["rendered_image_Intersection" + suffix for suffix in (".png", ".npy", ".hdr")]
+    backup = tmp_path / "backup"
+    backup.mkdir()
+    saved = [name for name in names if (out / name).exists()]
+    for name in saved:
+        shutil.move(out / name, backup / name)
+    try:
+        result = run_python([APP, "--integrator", "intersection", "--scene", "sphere",
+                             "--width", 8, "--height", 6, "--no-window"], cwd=tmp_path)
+        assert result.returncode == 0, result.stderr
+        assert all((out / name).is_file() for name in names)
+        assert np.load(out / names[1]).shape == (6, 8, 3)
+        assert not (tmp_path / "out").exists()
+    finally:
+        for name in names:
+            (out / name).unlink(missing_ok=True)
+        for name in saved:
+            shutil.move(backup / name, out / name)
+
+
+def test_all_figures_writes_the_six_figure_images(tmp_path):
+    result = run_python([APP, "--all-figures", "--width", 10, "--height", 10,
+                         "--out", tmp_path, "--no-window"], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    names = ["Phong_figure1", "Lazy_figure2", "Intersection_figure3", "Depth_figure4",
+             "Normal_figure4", "Phong_figure5"]
+    expected = {f"rendered_image_{name}{suffix}"
+                for name in names for suffix in (".png", ".npy", ".hdr")}
+    assert {path.name for path in tmp_path.iterdir()} == expected
+    # Figure 4's depth uses max_depth 5: the nearest point of the sphere, 3 away, would be
+    # 1 - 3/5 = 0.4 (0.7 with the default 10); the centre rays at 10 x 10 pass just beside it.
+    depth = np.load(tmp_path / "rendered_image_Depth_figure4.npy")
+    assert 0.35 < depth.max() <= 0.4
+
+
+@pytest.mark.parametrize("arguments, named", [
+    (["--integrator", "foo"], "integrator"),
+    (["--spp", "0"], "spp|samples_per_pixel"),
+    (["--spp", "two"], "spp"),
+    (["--workers", "0"], "workers"),
+    (["--width", "0"], "width"),
+])
+def test_bad_option_fails_with_a_message_naming_it(tmp_path, arguments, named):
+    small = ["--width", 8, "--height", 8] if "--width" not in arguments else ["--height", 8]
+    result = run_python([APP, *small, *arguments, "--out", tmp_path / "o", "--no-window"],
+                        cwd=tmp_path)
+    assert result.returncode != 0
+    assert re.search(named, result.stderr), result.stderr
+    assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
