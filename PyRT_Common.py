@@ -8,7 +8,7 @@ Speed note: the operators below are called millions of times per image, so every
 ``__slots__`` (smaller, faster attribute access) and every method is a single expression.
 """
 from abc import ABC, abstractmethod
-from math import acos, atan2, cos, floor, pi, sin, sqrt
+from math import acos, atan2, cos, floor, hypot, pi, sin, sqrt
 from pathlib import Path
 
 import cv2
@@ -104,13 +104,13 @@ def Cross(a, b):
 
 
 def Length(v):
-    """The Euclidean length |v| = sqrt(v . v)."""
-    return sqrt(v.x * v.x + v.y * v.y + v.z * v.z)
+    """The Euclidean length |v| = sqrt(v . v), computed without overflow or underflow."""
+    return hypot(v.x, v.y, v.z)
 
 
 def Normalize(v):
     """The unit vector v / |v|; a zero vector has no direction and raises ValueError."""
-    length = sqrt(v.x * v.x + v.y * v.y + v.z * v.z)
+    length = hypot(v.x, v.y, v.z)
     if length == 0.0:
         raise ValueError(f"Normalize: cannot normalise the zero vector {v!r}, it has no "
                          "direction; check how the vector was computed")

@@ -11,7 +11,7 @@ distance or None; only the nearest hit is turned into a ``HitData``.
 import io
 import os
 import tempfile
-from math import copysign, isfinite, tan
+from math import copysign, hypot, isfinite, tan
 from pathlib import Path
 
 from PyRT_Common import *
@@ -20,6 +20,7 @@ from PyRT_Common import _MISS
 # ------------------------------------------------------------------------------------------
 # Robustness constants
 # ------------------------------------------------------------------------------------------
+INFINITY = float("inf")
 # A ray direction whose squared length is this close to 1 is used as it is; anything else
 # is normalised first (a normalised vector is only unit length to within rounding).
 UNIT_TOLERANCE = 1e-12
@@ -66,21 +67,18 @@ def _check_positive(owner, name, value):
     if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
         raise TypeError(f"{owner}: {name} must be a number, got {value!r}")
     value = float(value)
-    if not (0.0 < value < float("inf")):
+    if not 0.0 < value < INFINITY:
         raise ValueError(f"{owner}: {name} must be positive and finite, got {value!r}")
     return value
 
 
 def _unit(d):
     """The components of d / |d|, or a ValueError when d has no direction."""
-    dx, dy, dz = d.x, d.y, d.z
-    big = max(abs(dx), abs(dy), abs(dz))
-    if not 0.0 < big < float("inf"):
+    length = hypot(d.x, d.y, d.z)  # hypot, unlike sqrt(x*x + ...), never over/underflows
+    if not 0.0 < length < INFINITY:
         raise ValueError(f"the ray direction must be a non-zero finite vector, got {d!r}; "
                          "set ray.d before tracing the ray")
-    dx, dy, dz = dx / big, dy / big, dz / big  # rescaled first: |d|^2 may over/underflow
-    length = sqrt(dx * dx + dy * dy + dz * dz)
-    return dx / length, dy / length, dz / length
+    return d.x / length, d.y / length, d.z / length
 
 
 class _Shape:
@@ -379,7 +377,8 @@ class InfinitePlane(_FastPrimitive):
         if den == 0.0:
             return None
         t = (pn - (ox * nx + oy * ny + oz * nz)) / den
-        return t if t_min <= t <= t_max else None  # an overflow to inf fails t <= t_max
+        # A ray nearly parallel to the plane can overflow t to infinity: no hit there.
+        return t if t_min <= t <= t_max and t != INFINITY else None
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
         n = self._normal
@@ -513,7 +512,10 @@ class Camera:
     def _derive(self):
         for name in ("width", "height"):
             value = getattr(self, "_" + name)
-            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+                raise TypeError(f"Camera: {name} must be a whole number of pixels, "
+                                f"got {value!r}")
+            if not (value >= 1 and value == int(value)):  # 500.0 is fine, 2.5 and nan not
                 raise ValueError(f"Camera: {name} must be a positive whole number of pixels, "
                                  f"got {value!r}")
             setattr(self, "_" + name, int(value))
