@@ -183,7 +183,7 @@ class RGBColor:
 
 
 class _Constant:
-    """A shared value (BLACK, the origin, a miss, ...): assigning to its fields would change
+    """A shared value (BLACK, the origin, ...): assigning to its fields would change
     it for everyone who uses it, so that raises an AttributeError instead."""
 
     __slots__ = ()
@@ -269,7 +269,7 @@ class HitData:
     __slots__ = ("has_hit", "hit_point", "normal", "hit_distance", "primitive_index")
 
     # The default point and normal are one shared zero vector that cannot be changed, so
-    # sharing it is safe, and a miss costs one object instead of three.
+    # sharing it is safe, and a miss costs one new object instead of three.
     def __init__(self, has_hit=False, hit_point=_ZERO, normal=_ZERO, hit_distance=HUGEVALUE,
                  primitive_index=-1):
         self.has_hit = has_hit
@@ -283,16 +283,6 @@ class HitData:
             return "HitData(has_hit=False)"
         return (f"HitData(has_hit=True, hit_point={self.hit_point!r}, normal={self.normal!r}, "
                 f"hit_distance={self.hit_distance!r}, primitive_index={self.primitive_index})")
-
-
-class _ConstantHit(_Constant, HitData):
-    __slots__ = ()
-    _fields = HitData.__slots__
-
-
-# What closest_hit returns on a miss: one shared, unchangeable HitData instead of a new one
-# for every ray that escapes.
-_MISS = _ConstantHit(False, _ZERO, _ZERO, HUGEVALUE, -1)
 
 
 # ------------------------------------------------------------------------------------------

@@ -15,7 +15,6 @@ from math import copysign, hypot, isfinite, tan
 from pathlib import Path
 
 from PyRT_Common import *
-from PyRT_Common import _MISS
 
 # ------------------------------------------------------------------------------------------
 # Robustness constants
@@ -169,7 +168,7 @@ class Scene:
                 nearest, distance = obj, t
                 t_max = t - t * TIE_TOLERANCE
         if nearest is None:
-            return _MISS
+            return HitData()
         hit = nearest._hit_data(ox, oy, oz, dx, dy, dz, distance)
         hit.primitive_index = self.object_list.index(nearest)
         return hit
@@ -287,7 +286,7 @@ class _FastPrimitive(Primitive):
         o, (dx, dy, dz) = ray.o, _unit(ray.d)
         t = self._distance(o.x, o.y, o.z, dx, dy, dz, ray.t_min, ray.t_max)
         if t is None:
-            return _MISS
+            return HitData()
         return self._hit_data(o.x, o.y, o.z, dx, dy, dz, t)
 
 

@@ -1,0 +1,560 @@
+"""Unit tests for PyRT_Core, against values computed by hand."""
+import math
+
+import cv2
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+import PyRT_Core
+from PyRT_Common import RGBColor, Ray, Vector3D
+from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight,
+                       Primitive, Scene, Sphere)
+
+TIGHT = 1e-12
+
+
+def as_tuple(v):
+    return (v.x, v.y, v.z)
+
+
+def rgb(c):
+    return (c.r, c.g, c.b)
+
+
+def approx3(values, tol=TIGHT):
+    return pytest.approx(values, abs=tol)
+
+
+def ray(origin, direction, **limits):
+    r = Ray(Vector3D(*origin), Vector3D(*direction))
+    for name, value in limits.items():
+        setattr(r, name, value)
+    return r
+
+
+def assert_hit(hit, point, normal, distance, tol=TIGHT):
+    assert hit.has_hit is True
+    assert as_tuple(hit.hit_point) == approx3(point, tol)
+    assert as_tuple(hit.normal) == approx3(normal, tol)
+    assert hit.hit_distance == pytest.approx(distance, abs=tol)
+
+
+# ------------------------------------------------------------------------------------------
+# Camera
+# ------------------------------------------------------------------------------------------
+def test_camera_attributes():
+    camera = Camera(4, 3, 90)
+    assert (camera.width, camera.height) == (4, 3)
+    assert camera.vertical_fov == pytest.approx(math.pi / 2, rel=1e-15)  # 90 degrees
+    assert camera.aspect_ratio == pytest.approx(4 / 3, rel=1e-15)
+
+
+@pytest.mark.parametrize("width, height, x, y", [(5, 3, 2, 1), (1, 1, 0, 0), (7, 9, 3, 4)])
+def test_camera_centre_pixel_of_odd_image_looks_straight_ahead(width, height, x, y):
+    # x_s = 2(x + 0.5)/width - 1 = 0 and y_s = 1 - 2(y + 0.5)/height = 0
+    d = Camera(width, height, 60).get_direction(x, y)
+    assert as_tuple(d) == approx3((0.0, 0.0, -1.0))
+
+
+R15 = 1 / math.sqrt(1.5)
+R22 = 1 / math.sqrt(22)
+
+
+@pytest.mark.parametrize("x, y, expected", [
+    # 2 x 2, tan(45) = 1, aspect 1: x_s, y_s = +-0.5, point (+-0.5, +-0.5, -1) / sqrt(1.5)
+    (0, 0, (-0.5 * R15, 0.5 * R15, -R15)),
+    (1, 0, (0.5 * R15, 0.5 * R15, -R15)),
+    (0, 1, (-0.5 * R15, -0.5 * R15, -R15)),
+    (1, 1, (0.5 * R15, -0.5 * R15, -R15)),
+])
+def test_camera_direction_at_corners_of_2x2_image(x, y, expected):
+    assert as_tuple(Camera(2, 2, 90).get_direction(x, y)) == approx3(expected)
+
+
+@pytest.mark.parametrize("x, y, expected", [
+    # 4 x 3, tan(45) = 1, aspect 4/3: pixel (0, 0) has x_s = 1/4 - 1 = -3/4, y_s = 1 - 1/3 =
+    # 2/3, point (-3/4 * 4/3, 2/3, -1) = (-1, 2/3, -1), length sqrt(22)/3: (-3, 2, -3)/sqrt(22)
+    (0, 0, (-3 * R22, 2 * R22, -3 * R22)),
+    (3, 0, (3 * R22, 2 * R22, -3 * R22)),
+    (0, 2, (-3 * R22, -2 * R22, -3 * R22)),
+    (3, 2, (3 * R22, -2 * R22, -3 * R22)),
+    # pixel (1, 1): x_s = 3/4 - 1 = -1/4, y_s = 0: point (-1/3, 0, -1) -> (-1, 0, -3)/sqrt(10)
+    (1, 1, (-1 / math.sqrt(10), 0.0, -3 / math.sqrt(10))),
+])
+def test_camera_direction_of_4x3_image(x, y, expected):
+    assert as_tuple(Camera(4, 3, 90).get_direction(x, y)) == approx3(expected)
+
+
+def test_camera_direction_uses_the_vertical_fov():
+    # fov 60: tan(30) = 1/sqrt(3); 1 x 2 pixel (0, 0): y_s = 1/2, point (0, 1/(2 sqrt 3), -1)
+    y = 0.5 / math.sqrt(3)
+    length = math.sqrt(1 + y * y)
+    d = Camera(1, 2, 60).get_direction(0, 0)
+    assert as_tuple(d) == approx3((0.0, y / length, -1.0 / length))
+
+
+def test_camera_directions_are_unit_length():
+    camera = Camera(7, 5, 75)
+    for y in range(5):
+        for x in range(7):
+            d = camera.get_direction(x, y)
+            assert math.sqrt(d.x ** 2 + d.y ** 2 + d.z ** 2) == pytest.approx(1.0, abs=1e-15)
+
+
+# ------------------------------------------------------------------------------------------
+# Sphere
+# ------------------------------------------------------------------------------------------
+def test_sphere_attributes():
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
+    assert as_tuple(sphere.origin) == (0.0, 0.0, -5.0)
+    assert sphere.radius == 2.0
+    assert sphere.radius_squared == 4.0
+    assert rgb(sphere.emission) == (0.0, 0.0, 0.0)
+    assert sphere.BRDF is None
+
+
+def test_sphere_hit_from_outside_gives_near_point_and_outward_normal():
+    # centre (0, 0, -5), radius 2: the ray down -z enters at z = -3, distance 3
+    hit = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0).intersect(ray((0, 0, 0), (0, 0, -1)))
+    assert_hit(hit, (0.0, 0.0, -3.0), (0.0, 0.0, 1.0), 3.0)
+
+
+def test_sphere_hit_off_axis():
+    # unit sphere at the origin, ray x = 0.6 down -z from z = 5: z = sqrt(1 - 0.36) = 0.8,
+    # distance 5 - 0.8 = 4.2, normal = the point itself
+    hit = Sphere(Vector3D(0.0, 0.0, 0.0), 1.0).intersect(ray((0.6, 0, 5), (0, 0, -1)))
+    assert_hit(hit, (0.6, 0.0, 0.8), (0.6, 0.0, 0.8), 4.2)
+
+
+def test_sphere_normal_points_outward_when_ray_starts_at_centre():
+    # from the centre (0, 0, -5) down -z: far side at z = -7, normal (0, 0, -1)
+    hit = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0).intersect(ray((0, 0, -5), (0, 0, -1)))
+    assert_hit(hit, (0.0, 0.0, -7.0), (0.0, 0.0, -1.0), 2.0)
+
+
+def test_sphere_normal_points_outward_when_ray_starts_inside():
+    # from (0, 0, -4) towards +z: leaves the sphere at z = -3 after 1, normal (0, 0, 1)
+    hit = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0).intersect(ray((0, 0, -4), (0, 0, 1)))
+    assert_hit(hit, (0.0, 0.0, -3.0), (0.0, 0.0, 1.0), 1.0)
+
+
+@pytest.mark.parametrize("origin, direction", [
+    ((0, 0, 0), (0, 1, 0)),    # points away sideways
+    ((0, 2.5, 0), (0, 0, -1)),  # passes above: closest approach 2.5 > 2
+    ((0, 0, 0), (0, 0, 1)),    # the sphere lies behind the origin
+])
+def test_sphere_miss(origin, direction):
+    assert Sphere(Vector3D(0.0, 0.0, -5.0), 2.0).intersect(ray(origin, direction)).has_hit is False
+
+
+def test_sphere_hit_beyond_t_max_is_a_miss():
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
+    assert sphere.intersect(ray((0, 0, 0), (0, 0, -1), t_max=2.5)).has_hit is False
+
+
+def test_sphere_hit_at_exactly_t_max_counts():
+    # the near hit is at 3 exactly: (25 - 4) / (5 + 2)
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
+    hit = sphere.intersect(ray((0, 0, 0), (0, 0, -1), t_max=3.0))
+    assert_hit(hit, (0.0, 0.0, -3.0), (0.0, 0.0, 1.0), 3.0)
+
+
+def test_sphere_t_min_past_the_near_hit_gives_the_far_hit():
+    # near hit at 3 < t_min = 4, far hit at 7: point (0, 0, -7), normal outward (0, 0, -1)
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
+    hit = sphere.intersect(ray((0, 0, 0), (0, 0, -1), t_min=4.0))
+    assert_hit(hit, (0.0, 0.0, -7.0), (0.0, 0.0, -1.0), 7.0)
+
+
+def test_sphere_both_hits_outside_t_range_is_a_miss():
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
+    assert sphere.intersect(ray((0, 0, 0), (0, 0, -1), t_min=3.5, t_max=6.5)).has_hit is False
+
+
+def test_ray_starting_on_sphere_surface_does_not_hit_it_within_epsilon():
+    # leaving the surface at z = -3 outwards: the only root is t = 0 < t_min = EPSILON
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
+    assert sphere.intersect(ray((0, 0, -3), (0, 0, 1))).has_hit is False
+
+
+# ------------------------------------------------------------------------------------------
+# InfinitePlane
+# ------------------------------------------------------------------------------------------
+def floor_plane():
+    return InfinitePlane(Vector3D(0.0, -1.0, 0.0), Vector3D(0.0, 2.0, 0.0))
+
+
+def test_plane_normal_attribute_is_normalised():
+    # (0, 3, 4) / 5
+    plane = InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 3.0, 4.0))
+    assert as_tuple(plane.normal) == approx3((0.0, 0.6, 0.8))
+
+
+def test_plane_hit_straight_down():
+    assert_hit(floor_plane().intersect(ray((0, 0, 0), (0, -1, 0))),
+               (0.0, -1.0, 0.0), (0.0, 1.0, 0.0), 1.0)
+
+
+def test_plane_hit_oblique():
+    # direction (1, -1, 0)/sqrt(2) reaches y = -1 at x = 1 after sqrt(2)
+    s = 1 / math.sqrt(2)
+    assert_hit(floor_plane().intersect(ray((0, 0, 0), (s, -s, 0))),
+               (1.0, -1.0, 0.0), (0.0, 1.0, 0.0), math.sqrt(2))
+
+
+def test_plane_normal_is_returned_as_given_from_behind():
+    # from y = -3 upwards: distance 2, the normal stays (0, 1, 0)
+    assert_hit(floor_plane().intersect(ray((0, -3, 0), (0, 1, 0))),
+               (0.0, -1.0, 0.0), (0.0, 1.0, 0.0), 2.0)
+
+
+@pytest.mark.parametrize("origin, direction", [
+    ((0, 0, 0), (1, 0, 0)),    # parallel above the plane
+    ((0, -1, 0), (0, 0, 1)),   # parallel inside the plane
+    ((0, 0, 0), (0, 1, 0)),    # the plane lies behind
+])
+def test_plane_miss(origin, direction):
+    assert floor_plane().intersect(ray(origin, direction)).has_hit is False
+
+
+def test_plane_respects_t_max():
+    assert floor_plane().intersect(ray((0, 0, 0), (0, -1, 0), t_max=0.5)).has_hit is False
+
+
+# ------------------------------------------------------------------------------------------
+# Parallelogram
+# ------------------------------------------------------------------------------------------
+def square():
+    """The square x, y in [-1, 1] at z = -3; normal Normalize((2,0,0) x (0,2,0)) = (0,0,1)."""
+    return Parallelogram(Vector3D(-1.0, -1.0, -3.0), Vector3D(2.0, 0.0, 0.0),
+                         Vector3D(0.0, 2.0, 0.0))
+
+
+def skewed():
+    """Corner (0, 0, -1), sides (1, 0, 0) and (1, 1, 0): the region with vertices (0, 0),
+    (1, 0), (2, 1), (1, 1) at z = -1; a point (x, y) has b = y and a = x - y."""
+    return Parallelogram(Vector3D(0.0, 0.0, -1.0), Vector3D(1.0, 0.0, 0.0),
+                         Vector3D(1.0, 1.0, 0.0))
+
+
+def down_at(x, y):
+    """The ray from (x, y, 0) straight down -z."""
+    return ray((x, y, 0), (0, 0, -1))
+
+
+def test_parallelogram_hit_inside():
+    assert_hit(square().intersect(ray((0, 0, 0), (0, 0, -1))),
+               (0.0, 0.0, -3.0), (0.0, 0.0, 1.0), 3.0)
+
+
+def test_parallelogram_hit_oblique():
+    # towards (0.5, 0.25, -3): direction (0.5, 0.25, -3)/|.|, distance sqrt(0.25 + 0.0625 + 9)
+    target = (0.5, 0.25, -3.0)
+    length = math.sqrt(9.3125)
+    hit = square().intersect(ray((0, 0, 0), tuple(c / length for c in target)))
+    assert_hit(hit, target, (0.0, 0.0, 1.0), length)
+
+
+def test_parallelogram_normal_faces_the_ray_from_behind():
+    # from z = -5 towards +z: the normal is flipped to (0, 0, -1)
+    assert_hit(square().intersect(ray((0, 0, -5), (0, 0, 1))),
+               (0.0, 0.0, -3.0), (0.0, 0.0, -1.0), 2.0)
+
+
+def test_parallelogram_normal_follows_the_order_of_the_sides():
+    # s1 = (0,2,0), s2 = (2,0,0): Cross = (0,0,-4), which already faces a ray coming from z=0
+    flipped = Parallelogram(Vector3D(-1.0, -1.0, -3.0), Vector3D(0.0, 2.0, 0.0),
+                            Vector3D(2.0, 0.0, 0.0))
+    assert as_tuple(flipped.intersect(ray((0, 0, 0), (0, 0, -1))).normal) == (0.0, 0.0, 1.0)
+    assert as_tuple(flipped.intersect(ray((0, 0, -5), (0, 0, 1))).normal) == (0.0, 0.0, -1.0)
+
+
+@pytest.mark.parametrize("x, y", [(1.5, 0.0), (0.0, 1.01), (-1.2, -1.2), (5.0, 5.0)])
+def test_parallelogram_miss_outside(x, y):
+    assert square().intersect(ray((x, y, 0), (0, 0, -1))).has_hit is False
+
+
+def test_parallelogram_parallel_ray_misses():
+    assert square().intersect(ray((0, 0, 0), (1, 0, 0))).has_hit is False
+
+
+def test_parallelogram_behind_the_ray_misses():
+    assert square().intersect(ray((0, 0, 0), (0, 0, 1))).has_hit is False
+
+
+@pytest.mark.parametrize("x, y", [
+    (1.5, 0.8),   # b = 0.8, a = 0.7
+    (1.0, 0.5),   # b = 0.5, a = 0.5
+    (1.9, 0.95),  # b = 0.95, a = 0.95
+])
+def test_skewed_parallelogram_hits_inside_the_skewed_region(x, y):
+    assert_hit(skewed().intersect(down_at(x, y)), (x, y, -1.0), (0.0, 0.0, 1.0), 1.0)
+
+
+@pytest.mark.parametrize("x, y", [
+    (0.2, 0.8),   # inside the bounding box [0, 2] x [0, 1], but a = -0.6
+    (1.8, 0.2),   # a = 1.6
+    (0.05, 0.5),  # a = -0.45
+])
+def test_skewed_parallelogram_misses_in_bounding_box_outside_the_skew(x, y):
+    assert skewed().intersect(down_at(x, y)).has_hit is False
+
+
+@pytest.mark.parametrize("x, y", [
+    (0.0, 0.0), (1.0, 0.0), (2.0, 1.0), (1.0, 1.0),  # the corners
+    (0.5, 0.0), (1.5, 0.5), (1.5, 1.0), (0.5, 0.5),  # the middle of each edge
+])
+def test_skewed_parallelogram_edges_and_corners_are_hits(x, y):
+    assert_hit(skewed().intersect(down_at(x, y)), (x, y, -1.0), (0.0, 0.0, 1.0), 1.0)
+
+
+@pytest.mark.parametrize("x, y", [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0),
+                                  (0.0, 1.0), (-1.0, 0.3)])
+def test_square_edges_and_corners_are_hits(x, y):
+    assert_hit(square().intersect(ray((x, y, 0), (0, 0, -1))), (x, y, -3.0), (0.0, 0.0, 1.0), 3.0)
+
+
+# ------------------------------------------------------------------------------------------
+# Materials, lights, primitives
+# ------------------------------------------------------------------------------------------
+def test_lambertian_kd_is_colour_over_pi():
+    kd = Lambertian(RGBColor(0.5, 0.25, 1.0)).kd
+    assert rgb(kd) == pytest.approx((0.5 / math.pi, 0.25 / math.pi, 1 / math.pi), rel=1e-15)
+
+
+@pytest.mark.parametrize("wi, cosine", [
+    ((0.0, 0.0, 1.0), 1.0),
+    ((1 / math.sqrt(2), 0.0, 1 / math.sqrt(2)), 1 / math.sqrt(2)),
+    ((0.6, 0.0, 0.8), 0.8),
+])
+def test_lambertian_value_is_kd_times_cosine(wi, cosine):
+    brdf = Lambertian(RGBColor(0.5, 0.25, 1.0))
+    value = brdf.get_value(Vector3D(*wi), Vector3D(0.0, 0.0, 1.0), Vector3D(0.0, 0.0, 1.0))
+    assert rgb(value) == pytest.approx(
+        (0.5 / math.pi * cosine, 0.25 / math.pi * cosine, cosine / math.pi), rel=1e-12)
+
+
+@pytest.mark.parametrize("wi", [(0.0, 0.0, -1.0), (1.0, 0.0, 0.0), (0.6, 0.0, -0.8)])
+def test_lambertian_value_is_black_when_light_is_not_above(wi):
+    brdf = Lambertian(RGBColor(0.5, 0.25, 1.0))
+    value = brdf.get_value(Vector3D(*wi), Vector3D(0.0, 0.0, 1.0), Vector3D(0.0, 0.0, 1.0))
+    assert rgb(value) == (0.0, 0.0, 0.0)
+
+
+def test_point_light_attributes():
+    light = PointLight(Vector3D(1.0, 2.0, 3.0), RGBColor(4.0, 5.0, 6.0))
+    assert as_tuple(light.pos) == (1.0, 2.0, 3.0)
+    assert rgb(light.intensity) == (4.0, 5.0, 6.0)
+
+
+def test_primitive_brdf_and_emission():
+    brdf = Lambertian(RGBColor(0.8, 0.8, 0.8))
+    sphere = Sphere(Vector3D(0.0, 0.0, 0.0), 1.0, emission=RGBColor(1.0, 2.0, 3.0))
+    sphere.set_BRDF(brdf)
+    assert sphere.get_BRDF() is brdf and sphere.BRDF is brdf
+    assert rgb(sphere.emission) == (1.0, 2.0, 3.0)
+
+
+def test_primitive_is_abstract():
+    with pytest.raises(TypeError):
+        Primitive()
+
+
+# ------------------------------------------------------------------------------------------
+# Scene
+# ------------------------------------------------------------------------------------------
+def test_new_scene_is_empty():
+    scene = Scene()
+    assert (scene.camera, scene.env_map, scene.rendered_image) == (None, None, None)
+    assert scene.object_list == [] and scene.pointLights == []
+
+
+def test_set_camera_allocates_image_of_height_width_3():
+    scene = Scene()
+    camera = Camera(4, 3, 60)
+    scene.set_camera(camera)
+    assert scene.camera is camera
+    assert scene.rendered_image.shape == (3, 4, 3)
+    assert scene.rendered_image.dtype.kind == "f"
+    assert not scene.rendered_image.any()
+
+
+def test_scene_collects_objects_lights_and_ambient():
+    scene = Scene()
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 1.0)
+    light = PointLight(Vector3D(0.0, 5.0, 0.0), RGBColor(1.0, 1.0, 1.0))
+    scene.add_object(sphere)
+    scene.add_point_light_sources(light)
+    scene.set_ambient(RGBColor(0.1, 0.2, 0.3))
+    assert scene.object_list == [sphere]
+    assert scene.pointLights == [light]
+    assert rgb(scene.i_a) == (0.1, 0.2, 0.3)
+
+
+def overlapping(order):
+    """Objects on the -z axis: sphere hit at 9 (far), sphere hit at 4, square hit at 3 but
+    placed at x = 10 (off the axis), plane hit at 20."""
+    objects = {
+        "far": Sphere(Vector3D(0.0, 0.0, -10.0), 1.0),
+        "near": Sphere(Vector3D(0.0, 0.0, -5.0), 1.0),
+        "aside": Parallelogram(Vector3D(9.0, -1.0, -3.0), Vector3D(2.0, 0.0, 0.0),
+                               Vector3D(0.0, 2.0, 0.0)),
+        "wall": InfinitePlane(Vector3D(0.0, 0.0, -20.0), Vector3D(0.0, 0.0, 1.0)),
+    }
+    scene = Scene()
+    for name in order:
+        scene.add_object(objects[name])
+    return scene
+
+
+@pytest.mark.parametrize("order", [
+    ("far", "near", "aside", "wall"), ("wall", "aside", "near", "far"),
+    ("near", "wall", "far", "aside"), ("aside", "far", "wall", "near"),
+])
+def test_closest_hit_picks_the_nearest_and_reports_its_index(order):
+    scene = overlapping(order)
+    hit = scene.closest_hit(ray((0, 0, 0), (0, 0, -1)))
+    assert_hit(hit, (0.0, 0.0, -4.0), (0.0, 0.0, 1.0), 4.0)
+    assert hit.primitive_index == order.index("near")
+
+
+def test_closest_hit_beyond_t_max_of_nearer_objects():
+    # t_min = 5 skips the near sphere's front (4), takes its back at 6
+    scene = overlapping(("far", "near", "wall"))
+    hit = scene.closest_hit(ray((0, 0, 0), (0, 0, -1), t_min=5.0))
+    assert_hit(hit, (0.0, 0.0, -6.0), (0.0, 0.0, -1.0), 6.0)
+    assert hit.primitive_index == 1
+
+
+def test_closest_hit_miss_has_no_hit():
+    scene = overlapping(("far", "near", "aside"))
+    assert scene.closest_hit(ray((0, 0, 0), (0, 1, 0))).has_hit is False
+
+
+def test_a_miss_is_a_new_hitdata_whose_fields_students_may_assign():
+    # The course's own closest_hit sets primitive_index on every result of intersect().
+    scene = overlapping(("far", "near", "aside"))
+    first = scene.closest_hit(ray((0, 0, 0), (0, 1, 0)))
+    second = scene.object_list[0].intersect(ray((0, 0, 0), (0, 1, 0)))
+    first.primitive_index = 3
+    second.hit_distance = 1.0
+    assert first is not second
+    assert scene.closest_hit(ray((0, 0, 0), (0, 1, 0))).primitive_index == -1
+
+
+def test_closest_hit_on_empty_scene_is_a_miss():
+    assert Scene().closest_hit(ray((0, 0, 0), (0, 0, -1))).has_hit is False
+
+
+def test_any_hit_true_when_something_is_hit():
+    assert overlapping(("far", "near")).any_hit(ray((0, 0, 0), (0, 0, -1))) is True
+
+
+@pytest.mark.parametrize("direction, t_max", [((0, 1, 0), 1e6), ((0, 0, -1), 3.5)])
+def test_any_hit_false_on_a_miss_or_beyond_t_max(direction, t_max):
+    assert overlapping(("far", "near")).any_hit(ray((0, 0, 0), direction, t_max=t_max)) is False
+
+
+def test_set_pixel_writes_row_y_column_x():
+    scene = Scene()
+    scene.set_camera(Camera(3, 2, 60))
+    scene.set_pixel(RGBColor(0.25, 0.5, 0.75), 2, 1)
+    expected = np.zeros((2, 3, 3))
+    expected[1, 2] = (0.25, 0.5, 0.75)
+    np.testing.assert_array_equal(scene.rendered_image, expected)
+
+
+# ------------------------------------------------------------------------------------------
+# Saving images
+# ------------------------------------------------------------------------------------------
+def scene_with_image(image):
+    scene = Scene()
+    height, width = image.shape[:2]
+    scene.set_camera(Camera(width, height, 60))
+    scene.rendered_image[...] = image
+    return scene
+
+
+def sample_image():
+    image = np.random.default_rng(7).uniform(0.05, 4.0, size=(5, 6, 3))
+    image[0, 0] = (5.0, 0.0, 0.0)   # pure red: a swapped channel order shows up here
+    image[4, 5] = (0.0, 0.0, 0.25)  # pure blue
+    return image
+
+
+@pytest.fixture
+def saved(tmp_path):
+    image = sample_image()
+    base = tmp_path / "new" / "folder" / "picture"
+    scene_with_image(image).save_image(str(base))
+    return image, base
+
+
+def test_save_image_creates_missing_folders_and_three_files(saved):
+    _, base = saved
+    for suffix in (".png", ".npy", ".hdr"):
+        assert base.with_name(base.name + suffix).is_file()
+
+
+def test_saved_npy_is_exactly_the_rendered_image(saved):
+    image, base = saved
+    np.testing.assert_array_equal(np.load(str(base) + ".npy"), image)
+
+
+def test_saved_hdr_is_rgb_float_within_rgbe_precision(saved):
+    image, base = saved
+    bgr = cv2.imread(str(base) + ".hdr", cv2.IMREAD_ANYDEPTH | cv2.IMREAD_COLOR)
+    assert bgr.dtype == np.float32 and bgr.shape == image.shape
+    read = cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB)
+    # RGBE keeps 8 bits of mantissa under the largest channel of each pixel
+    tolerance = image.max(axis=2, keepdims=True) / 128
+    assert np.all(np.abs(read - image) <= tolerance)
+    assert read[0, 0, 0] == pytest.approx(5.0, rel=1e-2) and read[0, 0, 2] == 0.0
+    assert read[4, 5, 2] == pytest.approx(0.25, rel=1e-2) and read[4, 5, 0] == 0.0
+
+
+def test_saved_png_is_the_tonemapped_image(saved):
+    image, base = saved
+    png = plt.imread(str(base) + ".png")
+    assert png.shape[:2] == image.shape[:2]
+    expected = PyRT_Core.tonemap_image(image)
+    np.testing.assert_allclose(png[:, :, :3], expected, atol=1.01 / 255)
+
+
+def test_save_image_overwrites_previous_files(tmp_path):
+    base = str(tmp_path / "picture")
+    scene_with_image(np.ones((2, 2, 3))).save_image(base)
+    scene_with_image(np.full((2, 2, 3), 3.0)).save_image(base)
+    np.testing.assert_array_equal(np.load(base + ".npy"), np.full((2, 2, 3), 3.0))
+
+
+# ------------------------------------------------------------------------------------------
+# Tonemapping
+# ------------------------------------------------------------------------------------------
+def test_tonemap_agrees_with_opencv_default_tonemapper():
+    image = np.random.default_rng(3).uniform(0.0, 20.0, size=(16, 12, 3)).astype(np.float32)
+    opencv = cv2.createTonemap(gamma=2.5).process(image.copy())
+    # OpenCV maps the minimum to a tiny negative number and returns its power as NaN; the
+    # course clips the result to [0, 1], which makes that pixel 0
+    expected = np.clip(np.nan_to_num(opencv, nan=0.0), 0.0, 1.0)
+    np.testing.assert_allclose(PyRT_Core.tonemap_image(image), expected, atol=1e-3)
+
+
+def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
+    image = np.array([[[2.0, 3.0, 6.0], [4.0, 2.5, 5.0]]])
+    out = PyRT_Core.tonemap_image(image)
+    assert out[0, 0, 0] == 0.0 and out[0, 0, 2] == pytest.approx(1.0, abs=1e-15)
+    # 4 -> (4 - 2)/(6 - 2) = 0.5, then 0.5 ** (1/2.5)
+    assert out[0, 1, 0] == pytest.approx(0.5 ** 0.4, rel=1e-12)
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_tonemap_ignores_non_finite_values_for_min_and_max(bad):
+    image = np.array([[[1.0, 2.0, 3.0], [bad, 1.5, 2.5]]])
+    out = PyRT_Core.tonemap_image(image)
+    finite = np.isfinite(image)
+    # finite pixels keep ((v - 1)/(3 - 1)) ** (1/2.5)
+    expected = ((image[finite] - 1.0) / 2.0) ** 0.4
+    np.testing.assert_allclose(out[finite], expected, rtol=1e-12, atol=1e-15)
+    assert np.all(np.isfinite(out))

@@ -1,0 +1,641 @@
+"""Numerical extremes and bad input: random geometry at every scale, scaled scenes,
+degenerate cameras and lights, and a clear error for every bad argument."""
+import math
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from AppRenderer import cornell_box_scene, sphere_test_scene
+from PyRT_Common import BLACK, HUGEVALUE, Cross, Dot, Length, Normalize, RGBColor, Ray, Vector3D
+from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight, Scene,
+                       Sphere)
+from PyRT_Integrators import DepthIntegrator, NormalIntegrator, PhongIntegrator
+
+EPS = sys.float_info.epsilon
+INF = float("inf")
+NAN = float("nan")
+
+PROPERTY = settings(max_examples=200, deadline=None,
+                    suppress_health_check=[HealthCheck.too_slow])
+
+
+def as_tuple(v):
+    return (v.x, v.y, v.z)
+
+
+def is_finite(v):
+    return all(math.isfinite(c) for c in as_tuple(v))
+
+
+def magnitude(*vectors):
+    """The largest absolute coordinate among the vectors: the scale of their rounding."""
+    return max(abs(c) for v in vectors for c in as_tuple(v))
+
+
+def distance(a, b):
+    return Length(a - b)
+
+
+def make_ray(origin, direction, t_max=HUGEVALUE, t_min=0.0):
+    """A ray with both limits chosen: t_min 0 keeps hits closer than EPSILON."""
+    ray = Ray(origin, direction, t_max)
+    ray.t_min = t_min
+    return ray
+
+
+# ------------------------------------------------------------------------------------------
+# Strategies
+# ------------------------------------------------------------------------------------------
+def log_uniform(lo_exponent, hi_exponent):
+    return st.floats(lo_exponent, hi_exponent).map(lambda e: 10.0 ** e)
+
+
+components = st.tuples(*[st.floats(-1.0, 1.0)] * 3)
+unit_vectors = components.filter(lambda c: sum(x * x for x in c) > 0.01).map(
+    lambda c: Normalize(Vector3D(*c)))
+
+
+@st.composite
+def sphere_and_ray_from_outside(draw):
+    """A sphere 1.5 to 1e6 radii (and at most 1e8) away from the ray origin, and a ray
+    aimed at a point at most 0.9 radii from its centre: it enters the sphere, not grazing."""
+    radius = draw(log_uniform(-7, 7))
+    away = min(radius * draw(log_uniform(math.log10(1.5), 6)), 1e8)
+    origin = Vector3D(*draw(components)) * away
+    centre = origin + draw(unit_vectors) * away
+    target = centre + draw(unit_vectors) * (radius * draw(st.floats(0.0, 0.9)))
+    return Sphere(centre, radius), make_ray(origin, Normalize(target - origin), 2.0 * away)
+
+
+@st.composite
+def sphere_and_ray_from_inside(draw):
+    """A sphere up to 1e8 from the world origin (at most 1e6 radii) and a ray starting at
+    most 0.9 radii from its centre, in any direction."""
+    radius = draw(log_uniform(-7, 7))
+    away = min(radius * draw(log_uniform(0, 6)), 1e8)
+    centre = Vector3D(*draw(components)) * away
+    origin = centre + draw(unit_vectors) * (radius * draw(st.floats(0.0, 0.9)))
+    return Sphere(centre, radius), make_ray(origin, draw(unit_vectors), 2.0 * radius)
+
+
+@st.composite
+def parallelogram_and_ray(draw):
+    """A parallelogram of size ~L (1e-3 .. 1e3) with sides at any angle of at least ~6
+    degrees, a point p0 + a*s1 + b*s2 of it (a, b in [0, 1], edges included) and a ray
+    towards that point from 0.1 L to 100 L away, at least ~12 degrees off the plane."""
+    size = draw(log_uniform(-3, 3))
+    point = Vector3D(*draw(components)) * (10.0 * size)
+    s1 = Vector3D(*draw(components)) * size
+    s2 = Vector3D(*draw(components)) * size
+    cross = Cross(s1, s2)
+    sides = Length(s1) * Length(s2)
+    if not (Length(s1) > 0.1 * size and Length(s2) > 0.1 * size
+            and Length(cross) > 0.1 * sides):
+        s1, s2 = Vector3D(size, 0.0, 0.0), Vector3D(0.3 * size, 0.0, size)  # skewed default
+        cross = Cross(s1, s2)
+    normal = Normalize(cross)
+    a, b = draw(st.floats(0.0, 1.0)), draw(st.floats(0.0, 1.0))
+    target = point + s1 * a + s2 * b
+    w = draw(unit_vectors)
+    if abs(Dot(w, normal)) < 0.2:
+        w = Normalize(w + normal)
+    origin = target + w * (size * draw(log_uniform(-1, 2)))
+    return Parallelogram(point, s1, s2), make_ray(origin, Normalize(target - origin)), target
+
+
+# ------------------------------------------------------------------------------------------
+# Property-based: spheres
+# ------------------------------------------------------------------------------------------
+def assert_on_sphere(hit, sphere, ray):
+    c, r = sphere.origin, sphere.radius
+    p, n, t = hit.hit_point, hit.normal, hit.hit_distance
+    scale = magnitude(c, ray.o) + r
+    assert ray.t_min <= t <= ray.t_max
+    assert abs(distance(p, c) - r) <= 64 * EPS * scale          # on the surface
+    assert abs(distance(p, ray.o) - t) <= 64 * EPS * scale      # t is the distance
+    assert distance(ray.get_hitpoint(t), p) <= 1e3 * EPS * scale  # on the ray
+    assert abs(Length(n) - 1.0) <= 1e-12
+    outward = (p - c) / r
+    assert distance(n, outward) <= 1e3 * EPS * scale / r
+
+
+@PROPERTY
+@given(sphere_and_ray_from_outside())
+def test_random_sphere_hit_from_outside_lies_on_surface_with_outward_normal(case):
+    sphere, ray = case
+    hit = sphere.intersect(ray)
+    assert hit.has_hit
+    assert_on_sphere(hit, sphere, ray)
+    assert Dot(hit.normal, ray.d) < 0  # the near side: the ray enters there
+    assert hit.hit_distance < distance(ray.o, sphere.origin)
+
+
+@PROPERTY
+@given(sphere_and_ray_from_inside())
+def test_random_sphere_hit_from_inside_is_far_side_with_outward_normal(case):
+    sphere, ray = case
+    hit = sphere.intersect(ray)
+    assert hit.has_hit
+    assert_on_sphere(hit, sphere, ray)
+    assert Dot(hit.normal, ray.d) > 0  # the ray leaves through the far side
+    # starting at most 0.9 r from the centre, the exit is 0.1 r to 1.9 r away
+    assert 0.1 * sphere.radius * (1 - 1e-9) <= hit.hit_distance <= 1.9 * sphere.radius * (1 + 1e-9)
+
+
+# ------------------------------------------------------------------------------------------
+# Property-based: parallelograms
+# ------------------------------------------------------------------------------------------
+@PROPERTY
+@given(parallelogram_and_ray())
+def test_random_parallelogram_is_hit_at_the_aimed_point(case):
+    parallelogram, ray, target = case
+    hit = parallelogram.intersect(ray)
+    assert hit.has_hit
+    scale = magnitude(ray.o, target, parallelogram.s1, parallelogram.s2)
+    assert distance(hit.hit_point, target) <= 1e3 * EPS * scale
+    assert hit.hit_distance == pytest.approx(distance(ray.o, target), abs=1e3 * EPS * scale)
+    expected = Normalize(Cross(parallelogram.s1, parallelogram.s2))
+    assert abs(abs(Dot(hit.normal, expected)) - 1.0) <= 1e-12
+    assert Dot(hit.normal, ray.d) < 0  # faces the incoming ray
+
+
+# ------------------------------------------------------------------------------------------
+# Property-based: Scene.closest_hit against brute force
+# ------------------------------------------------------------------------------------------
+coordinates = st.floats(-10.0, 10.0)
+points = st.builds(Vector3D, coordinates, coordinates, coordinates)
+sides = st.builds(Vector3D, *[st.floats(-4.0, 4.0)] * 3).filter(lambda v: Length(v) > 0.1)
+spheres = st.builds(Sphere, points, st.floats(0.1, 3.0))
+planes = st.builds(InfinitePlane, points, unit_vectors)
+parallelograms = st.tuples(points, sides, sides).filter(
+    lambda p: Length(Cross(p[1], p[2])) > 0.05 * Length(p[1]) * Length(p[2])).map(
+    lambda p: Parallelogram(*p))
+objects = st.lists(st.one_of(spheres, spheres, parallelograms, parallelograms, planes),
+                   min_size=0, max_size=6)
+directions = components.filter(lambda c: sum(x * x for x in c) > 0.01).map(
+    lambda c: Vector3D(*c))
+
+
+@PROPERTY
+@given(objects, points, directions)
+def test_closest_hit_equals_brute_force_minimum(object_list, origin, direction):
+    scene = Scene()
+    for obj in object_list:
+        scene.add_object(obj)
+    ray = Ray(origin, direction)
+    distances = [hit.hit_distance for hit in (obj.intersect(ray) for obj in object_list)
+                 if hit.has_hit]
+    closest = scene.closest_hit(ray)
+    if not distances:
+        assert not closest.has_hit
+        assert not scene.any_hit(ray)
+        return
+    assert closest.has_hit and scene.any_hit(ray)
+    # objects hit at the same distance (coplanar ones, say) may differ by rounding
+    assert closest.hit_distance == pytest.approx(min(distances), rel=1e-9, abs=1e-12)
+    own = object_list[closest.primitive_index].intersect(ray)
+    assert own.has_hit
+    assert own.hit_distance == pytest.approx(closest.hit_distance, rel=1e-12, abs=1e-12)
+    assert as_tuple(own.normal) == pytest.approx(as_tuple(closest.normal), abs=1e-9)
+
+
+# ------------------------------------------------------------------------------------------
+# Property-based: the length of the direction vector does not matter
+# ------------------------------------------------------------------------------------------
+aimed_rays = st.one_of(sphere_and_ray_from_outside(), sphere_and_ray_from_inside(),
+                       parallelogram_and_ray().map(lambda case: case[:2]))
+
+
+@PROPERTY
+@given(aimed_rays, log_uniform(-3, 3))
+def test_non_unit_direction_gives_the_same_hit(case, factor):
+    obj, unit_ray = case
+    scaled_ray = make_ray(unit_ray.o, unit_ray.d * factor, unit_ray.t_max, unit_ray.t_min)
+    scene = Scene()
+    scene.add_object(obj)
+    size = obj.radius if isinstance(obj, Sphere) else Length(obj.s1)
+    scale = magnitude(unit_ray.o, obj.origin if isinstance(obj, Sphere) else obj.point) + size
+    # a direction that is unit length to within ~1e-12 may be used as it is, so the two
+    # hits agree to a few 1e-12 of the scene's scale, not to the last bit
+    tolerance = 4e-12 * scale
+    for expected, hit in ((obj.intersect(unit_ray), obj.intersect(scaled_ray)),
+                          (scene.closest_hit(unit_ray), scene.closest_hit(scaled_ray))):
+        assert expected.has_hit and hit.has_hit
+        assert distance(hit.hit_point, expected.hit_point) <= tolerance
+        assert hit.hit_distance == pytest.approx(expected.hit_distance, abs=tolerance)
+        assert distance(hit.normal, expected.normal) <= tolerance / size
+
+
+# ------------------------------------------------------------------------------------------
+# Specific numerical cases
+# ------------------------------------------------------------------------------------------
+def test_unit_sphere_1e8_away_is_hit_head_on():
+    # the near side is at 1e8 - 1; b^2 - c = 1e16 - (1e16 - 1) would lose the 1 entirely
+    hit = Sphere(Vector3D(0.0, 0.0, -1e8), 1.0).intersect(
+        Ray(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 0.0, -1.0), INF))
+    assert hit.has_hit
+    assert hit.hit_distance == pytest.approx(1e8 - 1.0, abs=1e-6)
+    assert as_tuple(hit.normal) == pytest.approx((0.0, 0.0, 1.0), abs=1e-9)
+
+
+def test_unit_sphere_1e8_away_is_hit_off_centre():
+    # aimed at the point 0.6 off the centre: the surface point is (0.6, 0, -1e8 + 0.8)
+    centre = Vector3D(0.0, 0.0, -1e8)
+    target = Vector3D(0.6, 0.0, -1e8 + 0.8)
+    hit = Sphere(centre, 1.0).intersect(Ray(Vector3D(0.0, 0.0, 0.0), Normalize(target), INF))
+    assert hit.has_hit
+    assert abs(distance(hit.hit_point, centre) - 1.0) <= 1e-7
+    assert as_tuple(hit.hit_point) == pytest.approx(as_tuple(target), abs=1e-6)
+    assert as_tuple(hit.normal) == pytest.approx((0.6, 0.0, 0.8), abs=1e-6)
+
+
+@pytest.mark.parametrize("radius", [1e-7, 1e7])
+def test_smallest_and_largest_spheres_far_away_are_hit(radius):
+    away = min(radius * 1e6, 1e8)  # 0.1 and 1e8: 1e6 and 10 radii away
+    hit = Sphere(Vector3D(0.0, away, 0.0), radius).intersect(
+        make_ray(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0), INF))
+    assert hit.has_hit
+    assert hit.hit_distance == pytest.approx(away - radius, rel=1e-12)
+
+
+SQUARE = (Vector3D(-1.0, -1.0, -3.0), Vector3D(2.0, 0.0, 0.0), Vector3D(0.0, 2.0, 0.0))
+SKEWED = (Vector3D(0.1, 0.2, -3.0), Vector3D(0.7, 0.3, 0.0), Vector3D(-0.2, 0.9, 0.0))
+
+
+@pytest.mark.parametrize("shape", [SQUARE, SKEWED])
+@pytest.mark.parametrize("a, b", [(0, 0), (1, 0), (0, 1), (1, 1)])
+def test_ray_through_exact_parallelogram_corner_is_a_hit(shape, a, b):
+    point, s1, s2 = shape
+    corner = point + s1 * a + s2 * b
+    hit = Parallelogram(point, s1, s2).intersect(Ray(Vector3D(0.0, 0.0, 0.0), Normalize(corner)))
+    assert hit.has_hit
+    assert as_tuple(hit.hit_point) == pytest.approx(as_tuple(corner), abs=1e-12)
+
+
+def test_ray_from_the_corner_along_the_plane_gives_no_error():
+    point, s1, s2 = SQUARE
+    parallelogram = Parallelogram(point, s1, s2)
+    for direction in (s1, s2, s1 + s2):
+        hit = parallelogram.intersect(make_ray(point, Normalize(direction), INF))
+        assert not hit.has_hit or (is_finite(hit.hit_point) and math.isfinite(hit.hit_distance))
+
+
+PLANAR = [
+    lambda: InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0)),
+    lambda: Parallelogram(Vector3D(-1.0, 0.0, -1.0), Vector3D(0.0, 0.0, 2.0),
+                          Vector3D(2.0, 0.0, 0.0)),
+]
+
+
+@pytest.mark.parametrize("make", PLANAR, ids=["plane", "parallelogram"])
+@pytest.mark.parametrize("tilt", [0.0, 1e-200, -1e-200, 1e-300, -1e-300, 1e-320])
+@pytest.mark.parametrize("height", [1.0, 0.0, -1.0, 1e6])
+@pytest.mark.parametrize("t_max", [HUGEVALUE, INF])
+def test_parallel_and_nearly_parallel_rays_give_no_inf_or_nan(make, tilt, height, t_max):
+    # a ray at y = height, heading along x and tilted by `tilt` towards -y
+    obj = make()
+    scene = Scene()
+    scene.add_object(obj)
+    ray = make_ray(Vector3D(-0.5, height, 0.25), Vector3D(1.0, -tilt, 0.0), t_max)
+    for hit in (obj.intersect(ray), scene.closest_hit(ray)):
+        if hit.has_hit:
+            assert math.isfinite(hit.hit_distance) and hit.hit_distance <= t_max
+            assert is_finite(hit.hit_point) and is_finite(hit.normal)
+    assert scene.any_hit(ray) in (True, False)
+
+
+# ------------------------------------------------------------------------------------------
+# Scale invariance
+# ------------------------------------------------------------------------------------------
+SIZE = 40
+
+
+def scaled_copy(scene, s):
+    """The scene with every position and size times s and light intensities times s**2."""
+    copy = Scene()
+    copy.set_ambient(scene.i_a)
+    for obj in scene.object_list:
+        if isinstance(obj, Sphere):
+            new = Sphere(obj.origin * s, obj.radius * s)
+        else:
+            new = Parallelogram(obj.point * s, obj.s1 * s, obj.s2 * s)
+        new.set_BRDF(obj.get_BRDF())
+        copy.add_object(new)
+    for light in scene.pointLights:
+        copy.add_point_light_sources(PointLight(light.pos * s, light.intensity * (s * s)))
+    copy.set_camera(Camera(SIZE, SIZE, 70))
+    return copy
+
+
+INTEGRATORS = {
+    "phong": lambda name, s: PhongIntegrator(name),
+    "depth": lambda name, s: DepthIntegrator(name, 5.0 * s),
+    "normal": lambda name, s: NormalIntegrator(name),
+}
+
+
+def render(integrator, scene):
+    integrator.add_scene(scene)
+    integrator.render(workers=1, progress=False)
+    return scene.rendered_image.copy()
+
+
+@pytest.fixture(scope="module")
+def cornell_references(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("reference")
+    base = cornell_box_scene(0.75, 2)
+    return {name: render(make(str(folder / name), 1.0), scaled_copy(base, 1.0))
+            for name, make in INTEGRATORS.items()}
+
+
+def test_cornell_reference_images_are_not_trivial(cornell_references):
+    phong, depth = cornell_references["phong"], cornell_references["depth"]
+    assert np.all(np.isfinite(phong)) and np.all(phong > 0)  # the box fills the view
+    # every ray enters the box; the nearest point seen is the sphere's front, 1.75 - 0.25 =
+    # 1.5 away, the farthest the back wall's corners, sqrt(1 + 1 + 2.75^2) = 3.09 away:
+    # grey 1 - d/5 lies in [1 - 3.09/5, 1 - 1.5/5] = [0.382, 0.7]
+    assert np.all((depth >= 0.38) & (depth <= 0.7 + 1e-12))
+
+
+def phong_at_edge(x_edge, z, side_normal, side_colour):
+    """Phong of the Cornell box at the point (x_edge, 1, z) of the edge where a side wall
+    meets the ceiling, for either of the two surfaces: a side wall (normal side_normal,
+    diffuse side_colour) or the ceiling (normal (0, -1, 0), white). All three lights hang
+    below the ceiling in front of both walls, and the sphere lies below them."""
+    p = np.array([x_edge, 1.0, z])
+    colours = []
+    for normal, colour in ((side_normal, side_colour), ((0.0, -1.0, 0.0), (0.8, 0.8, 0.8))):
+        kd = np.array(colour) / math.pi
+        value = kd * np.array([1.0, 1.0, 0.3])  # kd (x) i_a
+        for light_x in (0.0, -0.5, 0.5):
+            to_light = np.array([light_x, 0.5, -1.75]) - p
+            r2 = to_light @ to_light
+            cosine = np.array(normal) @ to_light / math.sqrt(r2)
+            value = value + 0.5 * kd * cosine / r2
+        colours.append(value)
+    return colours
+
+
+@pytest.mark.parametrize("k", range(10))
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_points_where_a_wall_meets_the_ceiling_are_lit(cornell_references, k, side):
+    # pixel (k, k) of the 40 x 40 image has x_s = (2k + 1)/40 - 1 = -y_s: its ray
+    # (-a, a, -1), a = -x_s tan(35 deg), meets x = -1 and y = 1 together, on the edge of the
+    # left wall and the ceiling, at z = -1/a (inside the box for k <= 9); pixel (39 - k, k)
+    # is its mirror image on the right
+    a = (1.0 - (2 * k + 1) / 40) * math.tan(math.radians(35))
+    if side == "left":
+        pixel = cornell_references["phong"][k, k]
+        candidates = phong_at_edge(-1.0, -1.0 / a, (1.0, 0.0, 0.0), (0.7, 0.2, 0.2))
+    else:
+        pixel = cornell_references["phong"][k, 39 - k]
+        candidates = phong_at_edge(1.0, -1.0 / a, (-1.0, 0.0, 0.0), (0.2, 0.7, 0.2))
+    assert any(np.allclose(pixel, c, rtol=1e-6, atol=0) for c in candidates), \
+        f"pixel {pixel} is neither {candidates[0]} (wall) nor {candidates[1]} (ceiling)"
+
+
+@pytest.mark.parametrize("name", INTEGRATORS)
+@pytest.mark.parametrize("s", [1e-6, 1e-3, 1e3, 1e6])
+def test_scaled_cornell_box_renders_the_same_image(cornell_references, tmp_path, name, s):
+    image = render(INTEGRATORS[name](str(tmp_path / name), s),
+                   scaled_copy(cornell_box_scene(0.75, 2), s))
+    np.testing.assert_allclose(image, cornell_references[name], rtol=1e-6, atol=1e-12)
+
+
+# ------------------------------------------------------------------------------------------
+# Defined results at the edges
+# ------------------------------------------------------------------------------------------
+def render_small(scene, integrator, camera):
+    scene.set_camera(camera)
+    image = render(integrator, scene)
+    assert image.shape == (camera.height, camera.width, 3)
+    assert np.all(np.isfinite(image))
+    return image
+
+
+@pytest.mark.parametrize("position", [
+    (0.0, -2.0, -3.0),   # on the floor of the sphere scene
+    (-4.0, -2.0, -1.0),  # on the floor's corner
+    (0.0, 0.0, -3.0),    # on the sphere, nearest the camera
+])
+def test_point_light_on_a_surface_of_the_sphere_scene(tmp_path, position):
+    scene = sphere_test_scene()
+    scene.add_point_light_sources(PointLight(Vector3D(*position), RGBColor(5.0, 5.0, 5.0)))
+    render_small(scene, PhongIntegrator(str(tmp_path / "img")), Camera(16, 16, 60))
+
+
+@pytest.mark.parametrize("position", [
+    (0.0, 0.0, -2.75),   # the centre of the back wall
+    (-1.0, -1.0, -1.5),  # on the edge between the floor and the left wall
+    (1.0, 1.0, -2.75),   # on the corner of back wall, ceiling and right wall
+])
+def test_point_light_on_a_cornell_wall(tmp_path, position):
+    scene = cornell_box_scene(0.75, 2)
+    scene.add_point_light_sources(PointLight(Vector3D(*position), RGBColor(0.5, 0.5, 0.5)))
+    render_small(scene, PhongIntegrator(str(tmp_path / "img")), Camera(16, 16, 70))
+
+
+@pytest.mark.parametrize("width, height", [(1, 21), (21, 1), (1, 1)])
+def test_one_pixel_wide_or_tall_image_looks_through_the_centre(tmp_path, width, height):
+    # the middle pixel looks straight down -z at the sphere: distance 5 - 2 = 3, grey 1 - 3/5
+    image = render_small(sphere_test_scene(), DepthIntegrator(str(tmp_path / "img"), 5),
+                         Camera(width, height, 60))
+    assert image[height // 2, width // 2] == pytest.approx([0.4, 0.4, 0.4], abs=1e-12)
+
+
+@pytest.mark.parametrize("width, height", [(1, 9), (9, 1)])
+def test_one_pixel_wide_or_tall_image_renders_phong(tmp_path, width, height):
+    render_small(sphere_test_scene(), PhongIntegrator(str(tmp_path / "img")),
+                 Camera(width, height, 60))
+
+
+def test_tiny_field_of_view_sees_only_the_sphere_front(tmp_path):
+    # every ray is within ~1e-8 radians of -z: the normal at (0, 0, -3) is (0, 0, 1),
+    # coloured ((0, 0, 1) + 1) / 2 = (0.5, 0.5, 1)
+    image = render_small(sphere_test_scene(), NormalIntegrator(str(tmp_path / "img")),
+                         Camera(5, 5, 1e-6))
+    assert image == pytest.approx(np.broadcast_to([0.5, 0.5, 1.0], image.shape), abs=1e-6)
+
+
+@pytest.mark.parametrize("fov", [1e-6, 179.999])
+def test_extreme_field_of_view_centre_pixel_sees_the_sphere_front(tmp_path, fov):
+    # the centre of a 9 x 9 image looks straight down -z: normal (0, 0, 1) -> (0.5, 0.5, 1)
+    image = render_small(sphere_test_scene(), NormalIntegrator(str(tmp_path / "img")),
+                         Camera(9, 9, fov))
+    assert image[4, 4] == pytest.approx([0.5, 0.5, 1.0], abs=1e-12)
+
+
+@pytest.mark.parametrize("fov", [1e-6, 179.999])
+def test_extreme_field_of_view_renders_phong(tmp_path, fov):
+    image = render_small(sphere_test_scene(), PhongIntegrator(str(tmp_path / "img")),
+                         Camera(9, 9, fov))
+    assert image[4, 4].all()  # the sphere's front is lit
+
+
+def test_field_of_view_close_to_180_degrees_has_finite_unit_directions():
+    camera = Camera(4, 4, 179.999)
+    for x, y in ((0, 0), (3, 3), (0, 3), (2, 1)):
+        d = camera.get_direction(x, y)
+        assert is_finite(d) and Length(d) == pytest.approx(1.0, abs=1e-12)
+
+
+# ------------------------------------------------------------------------------------------
+# Bad input: the exception type, and a message naming the argument
+# ------------------------------------------------------------------------------------------
+GOOD = Vector3D(0.0, 0.0, -5.0)
+
+
+# A number that is not a whole positive number is a ValueError; something that is not a
+# number at all (a string; a bool, which the framework refuses as a number) is a TypeError,
+# as for the field of view and the sphere radius.
+PIXEL_COUNTS = [(0, ValueError), (-1, ValueError), (2.5, ValueError), (True, TypeError),
+                ("500", TypeError)]
+
+
+@pytest.mark.parametrize("width, exception", PIXEL_COUNTS)
+def test_camera_width_must_be_a_positive_integer(width, exception):
+    with pytest.raises(exception, match="width"):
+        Camera(width, 10, 60)
+
+
+@pytest.mark.parametrize("height, exception", PIXEL_COUNTS)
+def test_camera_height_must_be_a_positive_integer(height, exception):
+    with pytest.raises(exception, match="height"):
+        Camera(10, height, 60)
+
+
+@pytest.mark.parametrize("fov", [0, 180, -5, 200, NAN, INF])
+def test_camera_fov_must_lie_strictly_between_0_and_180(fov):
+    with pytest.raises(ValueError, match="vertical_fov"):
+        Camera(10, 10, fov)
+
+
+@pytest.mark.parametrize("fov", ["60", True, None])
+def test_camera_fov_must_be_a_number(fov):
+    with pytest.raises(TypeError, match="vertical_fov"):
+        Camera(10, 10, fov)
+
+
+@pytest.mark.parametrize("radius", [0, -1, INF, NAN])
+def test_sphere_radius_must_be_positive_and_finite(radius):
+    with pytest.raises(ValueError, match="sphere_radius"):
+        Sphere(GOOD, radius)
+
+
+def test_sphere_radius_must_be_a_number():
+    with pytest.raises(TypeError, match="sphere_radius"):
+        Sphere(GOOD, "2")
+
+
+BAD_VECTORS = [Vector3D(NAN, 0.0, 0.0), Vector3D(0.0, INF, 0.0), Vector3D(0.0, 0.0, -INF)]
+
+
+@pytest.mark.parametrize("bad", BAD_VECTORS)
+def test_sphere_origin_must_be_finite(bad):
+    with pytest.raises(ValueError, match="sphere_origin"):
+        Sphere(bad, 1.0)
+
+
+@pytest.mark.parametrize("bad", BAD_VECTORS)
+def test_point_light_position_must_be_finite(bad):
+    with pytest.raises(ValueError, match="pos_"):
+        PointLight(bad, RGBColor(1.0, 1.0, 1.0))
+
+
+@pytest.mark.parametrize("bad", BAD_VECTORS)
+def test_parallelogram_point_must_be_finite(bad):
+    with pytest.raises(ValueError, match="point"):
+        Parallelogram(bad, Vector3D(1.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0))
+
+
+@pytest.mark.parametrize("bad", BAD_VECTORS)
+def test_plane_origin_must_be_finite(bad):
+    with pytest.raises(ValueError, match="plane_origin"):
+        InfinitePlane(bad, Vector3D(0.0, 1.0, 0.0))
+
+
+def test_sphere_origin_must_be_a_vector():
+    with pytest.raises(TypeError, match="sphere_origin"):
+        Sphere((0.0, 0.0, -5.0), 1.0)
+
+
+@pytest.mark.parametrize("name", ["s1", "s2"])
+def test_parallelogram_sides_must_be_non_zero(name):
+    sides = {"s1": Vector3D(1.0, 0.0, 0.0), "s2": Vector3D(0.0, 1.0, 0.0)}
+    sides[name] = Vector3D(0.0, 0.0, 0.0)
+    with pytest.raises(ValueError, match=name):
+        Parallelogram(GOOD, sides["s1"], sides["s2"])
+
+
+@pytest.mark.parametrize("s2", [
+    Vector3D(2.0, 4.0, 6.0),         # 2 * s1
+    Vector3D(-1.0, -2.0, -3.0),      # -s1
+    Vector3D(1e-9, 2e-9, 3e-9),      # a tiny multiple of s1
+])
+def test_parallelogram_sides_must_not_be_parallel(s2):
+    with pytest.raises(ValueError, match="parallel") as error:
+        Parallelogram(GOOD, Vector3D(1.0, 2.0, 3.0), s2)
+    assert "s1" in str(error.value) and "s2" in str(error.value)
+
+
+def test_plane_normal_must_be_non_zero():
+    with pytest.raises(ValueError, match="plane_normal"):
+        InfinitePlane(GOOD, Vector3D(0.0, 0.0, 0.0))
+
+
+@pytest.mark.parametrize("zero", [Vector3D(0.0, 0.0, 0.0), Vector3D(-0.0, 0.0, -0.0)])
+def test_normalize_zero_vector_raises_value_error(zero):
+    with pytest.raises(ValueError, match="zero vector"):
+        Normalize(zero)
+
+
+@pytest.mark.parametrize("components, expected", [
+    ((1e-200, 0.0, 0.0), (1.0, 0.0, 0.0)),      # its square underflows to 0
+    ((3e-170, 4e-170, 0.0), (0.6, 0.8, 0.0)),   # a 3-4-5 triangle
+    ((1e200, 1e200, 0.0), (2 ** -0.5, 2 ** -0.5, 0.0)),  # its square overflows
+])
+def test_normalize_tiny_and_huge_non_zero_vectors_gives_unit_vectors(components, expected):
+    assert as_tuple(Normalize(Vector3D(*components))) == pytest.approx(expected, abs=1e-15)
+
+
+@pytest.mark.parametrize("max_depth", [0, -1, INF, NAN])
+def test_depth_integrator_max_depth_must_be_positive(max_depth):
+    with pytest.raises(ValueError, match="max_depth_"):
+        DepthIntegrator("unused", max_depth)
+
+
+@pytest.mark.parametrize("colour", [(0.5, 0.5, 0.5), Vector3D(0.5, 0.5, 0.5), 0.5, None])
+def test_lambertian_needs_an_rgb_colour(colour):
+    with pytest.raises(TypeError, match="diffuse_colour"):
+        Lambertian(colour)
+
+
+@pytest.mark.parametrize("obj", [Lambertian(BLACK), Vector3D(0.0, 0.0, 0.0), "sphere", None])
+def test_add_object_needs_a_primitive(obj):
+    scene = Scene()
+    with pytest.raises(TypeError, match="obj"):
+        scene.add_object(obj)
+    assert scene.object_list == []
+
+
+def small_scene():
+    scene = Scene()
+    scene.set_camera(Camera(4, 3, 60))
+    return scene
+
+
+@pytest.mark.parametrize("x, y", [(4, 0), (0, 3), (-1, 0), (0, -1), (10, 10)])
+def test_set_pixel_out_of_bounds_raises_index_error(x, y):
+    scene = small_scene()
+    with pytest.raises(IndexError, match=r"\({}, {}\)".format(x, y)):
+        scene.set_pixel(RGBColor(1.0, 1.0, 1.0), x, y)
+    assert not scene.rendered_image.any()
+
+
+@pytest.mark.parametrize("value", [(1.0, 0.0, 0.0), 0.5, None, Vector3D(1.0, 0.0, 0.0)])
+def test_set_pixel_needs_a_colour(value):
+    with pytest.raises(TypeError, match="pixel_val"):
+        small_scene().set_pixel(value, 1, 1)
