@@ -11,10 +11,12 @@ distance or None; only the nearest hit is turned into a ``HitData``.
 import io
 import os
 import tempfile
-from math import copysign, hypot, isfinite, tan
+from concurrent.futures import ThreadPoolExecutor
+from math import hypot, isfinite, tan
 from pathlib import Path
 
 from PyRT_Common import *
+from PyRT_Common import _ConstantVector
 
 # ------------------------------------------------------------------------------------------
 # Robustness constants
@@ -22,15 +24,15 @@ from PyRT_Common import *
 INFINITY = float("inf")
 # A ray direction whose squared length is this close to 1 is used as it is; anything else
 # is normalised first (a normalised vector is only unit length to within rounding).
-UNIT_TOLERANCE = 1e-12
+UNIT_LOW, UNIT_HIGH = 1.0 - 1e-12, 1.0 + 1e-12
 # Parallelogram edge test tolerance, in units of the sides: rounding in the hit point must
 # not open cracks along edges and corners, where neighbouring walls meet.
 EDGE_TOLERANCE = 1e-9
-# closest_hit: a later object must be nearer than the nearest so far by more than this
-# fraction of the distance. Where two surfaces meet or overlap (the edges of the Cornell box
+# closest_hit: a later object must be nearer than TIE_SHRINK times the nearest distance so
+# far, that is nearer by more than a ten-billionth. Where two surfaces meet or overlap (the edges of the Cornell box
 # lie exactly on the image's diagonals), rounding would otherwise pick either of them, one
 # way on one machine and the other way on the next; this way the first in object_list wins.
-TIE_TOLERANCE = 1e-10
+TIE_SHRINK = 1.0 - 1e-10
 
 
 # ------------------------------------------------------------------------------------------
@@ -141,7 +143,7 @@ class Scene:
         """True when the ray hits any object at a distance in [ray.t_min, ray.t_max]."""
         o, d = ray.o, ray.d
         dx, dy, dz = d.x, d.y, d.z
-        if not abs(dx * dx + dy * dy + dz * dz - 1.0) <= UNIT_TOLERANCE:
+        if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:  # also catches NaN
             dx, dy, dz = _unit(d)
         return self.occluded(o.x, o.y, o.z, dx, dy, dz, ray.t_min, ray.t_max)
 
@@ -157,20 +159,21 @@ class Scene:
         the object's index in object_list; a HitData with has_hit False on a miss."""
         o, d = ray.o, ray.d
         dx, dy, dz = d.x, d.y, d.z
-        if not abs(dx * dx + dy * dy + dz * dz - 1.0) <= UNIT_TOLERANCE:
+        if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:  # also catches NaN
             dx, dy, dz = _unit(d)
         ox, oy, oz = o.x, o.y, o.z
         t_min, t_max = ray.t_min, ray.t_max
+        objects = self.object_list
         nearest = None
-        for obj in self.object_list:
+        for obj in objects:
             t = obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max)
             if t is not None:
                 nearest, distance = obj, t
-                t_max = t - t * TIE_TOLERANCE
+                t_max = t * TIE_SHRINK
         if nearest is None:
             return HitData()
         hit = nearest._hit_data(ox, oy, oz, dx, dy, dz, distance)
-        hit.primitive_index = self.object_list.index(nearest)
+        hit.primitive_index = objects.index(nearest)
         return hit
 
     def set_pixel(self, pixel_val, x, y):
@@ -201,16 +204,16 @@ class Scene:
                                "scene.set_camera(camera) and render first")
         base = Path(full_filename)
         base.parent.mkdir(parents=True, exist_ok=True)
-        display = tonemap_image(image) if tonemap else np.clip(np.nan_to_num(image), 0.0, 1.0)
-        png = io.BytesIO()
-        plt.imsave(png, display, format="png")
-        npy = io.BytesIO()
-        np.save(npy, image)
-        ok, hdr = cv2.imencode(".hdr", np.ascontiguousarray(image[:, :, ::-1], np.float32))
-        if not ok:
-            raise RuntimeError("Scene.save_image: OpenCV could not encode the HDR image")
-        for suffix, data in ((".png", png.getvalue()), (".npy", npy.getvalue()),
-                             (".hdr", hdr.tobytes())):
+        with ThreadPoolExecutor(1) as pool:  # the raw files are encoded meanwhile
+            raw = pool.submit(_raw_files, image)
+            display = tonemap_image(image) if tonemap else np.clip(np.nan_to_num(image), 0, 1)
+            png = io.BytesIO()
+            # 8 bits as matplotlib makes them from floats, floor(255 v); zlib's fastest
+            # level writes twice as fast for a slightly larger file.
+            plt.imsave(png, (display * 255.0).astype(np.uint8), format="png",
+                       pil_kwargs={"compress_level": 1})
+            files = {".png": png.getvalue(), **raw.result()}
+        for suffix, data in files.items():
             _write_atomically(base.parent / (base.name + suffix), data)
 
 
@@ -222,14 +225,30 @@ def tonemap_image(image, gamma=2.5):
     Unlike OpenCV it ignores non-finite values when it looks for the minimum and maximum,
     so one NaN from a buggy integrator does not turn the whole picture black; NaN and -inf
     pixels are shown as the minimum, +inf as the maximum."""
-    finite = np.isfinite(image)
-    if not finite.any():
-        return np.zeros(image.shape)
-    lo, hi = float(image[finite].min()), float(image[finite].max())
-    out = np.nan_to_num(image, nan=lo, posinf=hi, neginf=lo)
+    if np.isfinite(image).all():
+        lo, hi, out = float(image.min()), float(image.max()), image.copy()
+    else:
+        finite = np.isfinite(image)
+        if not finite.any():
+            return np.zeros(image.shape, np.float32)
+        lo, hi = float(image[finite].min()), float(image[finite].max())
+        out = np.nan_to_num(image, nan=lo, posinf=hi, neginf=lo)
     if hi - lo > np.finfo(float).eps:  # OpenCV leaves a flat image as it is
-        out = (out - lo) / (hi - lo)
-    return np.clip(out, 0.0, 1.0) ** (1.0 / gamma)
+        out -= lo
+        out /= hi - lo
+    # The power in single precision, as OpenCV computes it (and twice as fast as double).
+    out = np.clip(out, 0.0, 1.0).astype(np.float32)
+    return np.power(out, np.float32(1.0 / gamma), out=out)
+
+
+def _raw_files(image):
+    """The .npy and .hdr files of the linear image, as bytes."""
+    npy = io.BytesIO()
+    np.save(npy, image)
+    ok, hdr = cv2.imencode(".hdr", np.ascontiguousarray(image[:, :, ::-1], np.float32))
+    if not ok:
+        raise RuntimeError("Scene.save_image: OpenCV could not encode the HDR image")
+    return {".npy": npy.getvalue(), ".hdr": hdr.tobytes()}
 
 
 def _write_atomically(path, data):
@@ -324,13 +343,15 @@ class Sphere(_FastPrimitive):
         disc = r2 - (lx * lx + ly * ly + lz * lz)
         if disc < 0.0:
             return None
-        q = -b - copysign(sqrt(disc), b)
-        if q == 0.0:  # b == disc == 0: the ray starts on the sphere, touching it
-            t0 = t1 = 0.0
-        elif b < 0.0:  # q = |b| + sqrt(disc) is the far root
-            t0, t1 = (fx * fx + fy * fy + fz * fz - r2) / q, q
-        else:          # q = -(b + sqrt(disc)) is the near root
+        if b > 0.0:    # q = -(b + sqrt(disc)) is the near root
+            q = -b - sqrt(disc)
             t0, t1 = q, (fx * fx + fy * fy + fz * fz - r2) / q
+        else:          # q = sqrt(disc) - b = |b| + sqrt(disc) is the far root
+            q = sqrt(disc) - b
+            if q == 0.0:  # b == disc == 0: the ray starts on the sphere, touching it
+                t0 = t1 = 0.0
+            else:
+                t0, t1 = (fx * fx + fy * fy + fz * fz - r2) / q, q
         if t_min <= t0 <= t_max:
             return t0
         if t_min <= t1 <= t_max:
@@ -369,6 +390,7 @@ class InfinitePlane(_FastPrimitive):
         self._normal = Normalize(_check_nonzero("InfinitePlane", "plane_normal", self._normal))
         n, p = self._normal, self._origin
         self._k = (n.x, n.y, n.z, Dot(p, n))
+        self._hit_normal = _ConstantVector(n.x, n.y, n.z)  # one for every hit: see _hit_data
 
     def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
         nx, ny, nz, pn = self._k
@@ -380,9 +402,10 @@ class InfinitePlane(_FastPrimitive):
         return t if t_min <= t <= t_max and t != INFINITY else None
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
-        n = self._normal
+        # Every hit of a plane shares one normal vector, which cannot be changed (a
+        # shared constant, like BLACK): that saves creating one per hit.
         return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
-                       Vector3D(n.x, n.y, n.z), t)
+                       self._hit_normal, t)
 
 
 class Parallelogram(_FastPrimitive):
@@ -416,6 +439,7 @@ class Parallelogram(_FastPrimitive):
         ua, ub = Cross(s2, m) / mm, Cross(m, s1) / mm
         self._k = (n.x, n.y, n.z, Dot(p, n))
         self._k2 = (p.x, p.y, p.z, ua.x, ua.y, ua.z, ub.x, ub.y, ub.z)
+        self._faces = (_ConstantVector(n.x, n.y, n.z), _ConstantVector(-n.x, -n.y, -n.z))
 
     def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
         nx, ny, nz, pn = self._k
@@ -436,11 +460,10 @@ class Parallelogram(_FastPrimitive):
         return t
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
-        nx, ny, nz = self._k[:3]
-        if dx * nx + dy * ny + dz * nz > 0.0:
-            nx, ny, nz = -nx, -ny, -nz
+        nx, ny, nz, _ = self._k
+        front, back = self._faces  # shared, unchangeable normals, as for InfinitePlane
         return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
-                       Vector3D(nx, ny, nz), t)
+                       back if dx * nx + dy * ny + dz * nz > 0.0 else front, t)
 
 
 # ------------------------------------------------------------------------------------------
@@ -524,8 +547,8 @@ class Camera:
         self.aspect_ratio = self._width / self._height
         self._scale_y = tan(self._vertical_fov / 2.0)
         self._scale_x = self._scale_y * self.aspect_ratio
-        self._row_x = [(2.0 * (x + 0.5) / self._width - 1.0) * self._scale_x
-                       for x in range(self._width)]
+        self._row_x = np.array([(2.0 * (x + 0.5) / self._width - 1.0) * self._scale_x
+                                for x in range(self._width)])
 
     def get_direction(self, x, y, u=0.5, v=0.5):
         """The unit direction through the point (u, v) of pixel (x, y); (0.5, 0.5), the
@@ -537,11 +560,10 @@ class Camera:
         return Vector3D(px / length, py / length, -1.0 / length)
 
     def row_directions(self, y):
-        """get_direction(x, y) for every x of row y, computed in one go for speed."""
+        """get_direction(x, y) for every x of row y, the same numbers computed with numpy in
+        one go: IEEE arithmetic rounds numpy's operations exactly as Python's."""
         py = (1.0 - 2.0 * (y + 0.5) / self._height) * self._scale_y
-        py2 = py * py + 1.0
-        directions = []
-        for px in self._row_x:
-            length = sqrt(px * px + py2)
-            directions.append(Vector3D(px / length, py / length, -1.0 / length))
-        return directions
+        px = self._row_x
+        length = np.sqrt(px * px + (py * py + 1.0))
+        return list(map(Vector3D, (px / length).tolist(), (py / length).tolist(),
+                        (-1.0 / length).tolist()))

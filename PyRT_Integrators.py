@@ -260,6 +260,8 @@ def _check_writable(folder):
 
 
 def _report_non_finite(image, name):
+    if np.isfinite(image).all():
+        return
     bad = ~np.isfinite(image).all(axis=2)
     count = int(bad.sum())
     if count:
@@ -276,10 +278,15 @@ def usable_cores():
 
 
 def _row_blocks(y0, y1, workers):
-    """Rows y0 .. y1-1 cut into about 16 blocks per worker, so that the workers stay busy
-    until the end even when some rows cost more than others."""
-    step = max(1, (y1 - y0) // (workers * 16))
-    return [(y, min(y + step, y1)) for y in range(y0, y1, step)]
+    """Rows y0 .. y1-1 cut into blocks that shrink towards the end (guided scheduling):
+    large blocks cost less to hand out, and the small last ones keep every worker busy
+    until the image is done, even when some rows cost far more than others."""
+    blocks = []
+    while y0 < y1:
+        step = max(1, (y1 - y0) // (workers * 4))
+        blocks.append((y0, min(y0 + step, y1)))
+        y0 += step
+    return blocks
 
 
 def _worker_payload(integrator):

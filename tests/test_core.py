@@ -545,8 +545,8 @@ def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
     image = np.array([[[2.0, 3.0, 6.0], [4.0, 2.5, 5.0]]])
     out = PyRT_Core.tonemap_image(image)
     assert out[0, 0, 0] == 0.0 and out[0, 0, 2] == pytest.approx(1.0, abs=1e-15)
-    # 4 -> (4 - 2)/(6 - 2) = 0.5, then 0.5 ** (1/2.5)
-    assert out[0, 1, 0] == pytest.approx(0.5 ** 0.4, rel=1e-12)
+    # 4 -> (4 - 2)/(6 - 2) = 0.5, then 0.5 ** (1/2.5), in single precision as in OpenCV
+    assert out[0, 1, 0] == pytest.approx(0.5 ** 0.4, rel=1e-6)
 
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
@@ -554,7 +554,7 @@ def test_tonemap_ignores_non_finite_values_for_min_and_max(bad):
     image = np.array([[[1.0, 2.0, 3.0], [bad, 1.5, 2.5]]])
     out = PyRT_Core.tonemap_image(image)
     finite = np.isfinite(image)
-    # finite pixels keep ((v - 1)/(3 - 1)) ** (1/2.5)
+    # finite pixels keep ((v - 1)/(3 - 1)) ** (1/2.5), in single precision as in OpenCV
     expected = ((image[finite] - 1.0) / 2.0) ** 0.4
-    np.testing.assert_allclose(out[finite], expected, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(out[finite], expected, rtol=1e-6, atol=1e-7)
     assert np.all(np.isfinite(out))
