@@ -38,14 +38,26 @@ TIE_SHRINK = 1.0 - 1e-10
 # ------------------------------------------------------------------------------------------
 # Input checks: raised where the mistake is made, naming the argument
 # ------------------------------------------------------------------------------------------
+def _checked(owner, name, value, cls):
+    """A copy of value, a Vector3D or RGBColor, with plain float components; or a
+    TypeError/ValueError naming the argument."""
+    if not isinstance(value, cls):
+        raise TypeError(f"{owner}: {name} must be a {cls.__name__}, got {value!r}")
+    try:
+        parts = [float(part) for part in value]
+    except (TypeError, ValueError):
+        raise TypeError(f"{owner}: {name} must hold numbers, got {value!r}") from None
+    if not all(map(isfinite, parts)):
+        raise ValueError(f"{owner}: {name} must have finite components, got {value!r}")
+    return cls(*parts)
+
+
 def _check_vector(owner, name, v):
-    """A copy of v as a Vector3D of plain floats, or a TypeError/ValueError naming it."""
-    if not isinstance(v, Vector3D):
-        raise TypeError(f"{owner}: {name} must be a Vector3D, got {v!r}")
-    x, y, z = float(v.x), float(v.y), float(v.z)
-    if not (isfinite(x) and isfinite(y) and isfinite(z)):
-        raise ValueError(f"{owner}: {name} must have finite components, got {v!r}")
-    return Vector3D(x, y, z)
+    return _checked(owner, name, v, Vector3D)
+
+
+def _check_color(owner, name, c):
+    return _checked(owner, name, c, RGBColor)
 
 
 def _check_nonzero(owner, name, v):
@@ -53,15 +65,6 @@ def _check_nonzero(owner, name, v):
     if v.x == 0.0 and v.y == 0.0 and v.z == 0.0:
         raise ValueError(f"{owner}: {name} must not be the zero vector")
     return v
-
-
-def _check_color(owner, name, c):
-    if not isinstance(c, RGBColor):
-        raise TypeError(f"{owner}: {name} must be an RGBColor, got {c!r}")
-    r, g, b = float(c.r), float(c.g), float(c.b)
-    if not (isfinite(r) and isfinite(g) and isfinite(b)):
-        raise ValueError(f"{owner}: {name} must have finite channels, got {c!r}")
-    return RGBColor(r, g, b)
 
 
 def _check_positive(owner, name, value):
