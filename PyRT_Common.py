@@ -264,19 +264,35 @@ class HitData:
     ``hit_point`` (on the surface), its unit ``normal``, ``hit_distance`` (the distance
     travelled along the ray) and ``primitive_index`` (the object's index in
     ``scene.object_list``, set by ``closest_hit``).
+
+    Speed note: a hit found by PyRT's own primitives works out its point only when it is
+    first read (the depth and normal images never read it); reading and assigning it
+    works as for any attribute.
     """
 
-    __slots__ = ("has_hit", "hit_point", "normal", "hit_distance", "primitive_index")
+    __slots__ = ("has_hit", "_hit_point", "normal", "hit_distance", "primitive_index",
+                 "_surface")
 
     # The default point and normal are one shared zero vector that cannot be changed, so
     # sharing it is safe, and a miss costs one new object instead of three.
     def __init__(self, has_hit=False, hit_point=_ZERO, normal=_ZERO, hit_distance=HUGEVALUE,
-                 primitive_index=-1):
+                 primitive_index=-1, surface=None):
         self.has_hit = has_hit
-        self.hit_point = hit_point
+        self._hit_point = hit_point
         self.normal = normal
         self.hit_distance = hit_distance
         self.primitive_index = primitive_index
+        self._surface = surface  # (primitive, ray) to work out a hit_point given as None
+
+    @property
+    def hit_point(self):
+        if self._hit_point is None and self._surface is not None:
+            self._hit_point = self._surface[0]._surface_point(self)
+        return self._hit_point
+
+    @hit_point.setter
+    def hit_point(self, point):
+        self._hit_point = point
 
     def __repr__(self):
         if not self.has_hit:

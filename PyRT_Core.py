@@ -302,7 +302,10 @@ class Primitive(ABC):
 
 
 class _FastPrimitive(Primitive):
-    """A built-in primitive: intersect() is the public face of _distance and _hit_data."""
+    """A built-in primitive: intersect() is the public face of _distance and _hit_data.
+
+    Its HitData leaves the point for _surface_point to work out when it is first read
+    (see HitData), from the primitive and ray kept in its _surface."""
 
     def intersect(self, ray):
         o, (dx, dy, dz) = ray.o, _unit(ray.d)
@@ -310,6 +313,12 @@ class _FastPrimitive(Primitive):
         if t is None:
             return HitData()
         return self._hit_data(o.x, o.y, o.z, dx, dy, dz, t)
+
+    def _surface_point(self, hit):
+        """The point o + d t of the hit."""
+        _, ox, oy, oz, dx, dy, dz = hit._surface
+        t = hit.hit_distance
+        return Vector3D(ox + dx * t, oy + dy * t, oz + dz * t)
 
 
 class Sphere(_FastPrimitive):
@@ -363,15 +372,20 @@ class Sphere(_FastPrimitive):
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
         cx, cy, cz, r2, r = self._k
-        # Rounding leaves o + d*t slightly off the surface; project it back onto the sphere.
         vx, vy, vz = ox + dx * t - cx, oy + dy * t - cy, oz + dz * t - cz
         try:
             inv = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
+            normal = Vector3D(vx * inv, vy * inv, vz * inv)
         except ZeroDivisionError:  # a sphere far below the precision of its position
-            return HitData(True, Vector3D(cx, cy, cz), Vector3D(-dx, -dy, -dz), t)
-        nx, ny, nz = vx * inv, vy * inv, vz * inv
-        return HitData(True, Vector3D(cx + nx * r, cy + ny * r, cz + nz * r),
-                       Vector3D(nx, ny, nz), t)
+            normal = Vector3D(-dx, -dy, -dz)
+        return HitData(True, None, normal, t, -1, (self, ox, oy, oz, dx, dy, dz))
+
+    def _surface_point(self, hit):
+        # Rounding leaves o + d*t slightly off the surface; the point along the normal at
+        # exactly one radius from the centre is on it.
+        cx, cy, cz, r2, r = self._k
+        n = hit.normal
+        return Vector3D(cx + n.x * r, cy + n.y * r, cz + n.z * r)
 
 
 class InfinitePlane(_FastPrimitive):
@@ -393,7 +407,7 @@ class InfinitePlane(_FastPrimitive):
         self._normal = Normalize(_check_nonzero("InfinitePlane", "plane_normal", self._normal))
         n, p = self._normal, self._origin
         self._k = (n.x, n.y, n.z, Dot(p, n))
-        self._hit_normal = _ConstantVector(n.x, n.y, n.z)  # one for every hit: see _hit_data
+        self._hit_normal = _ConstantVector(n.x, n.y, n.z)  # see _hit_data
 
     def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
         nx, ny, nz, pn = self._k
@@ -407,8 +421,7 @@ class InfinitePlane(_FastPrimitive):
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
         # Every hit of a plane shares one normal vector, which cannot be changed (a
         # shared constant, like BLACK): that saves creating one per hit.
-        return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
-                       self._hit_normal, t)
+        return HitData(True, None, self._hit_normal, t, -1, (self, ox, oy, oz, dx, dy, dz))
 
 
 class Parallelogram(_FastPrimitive):
@@ -465,8 +478,8 @@ class Parallelogram(_FastPrimitive):
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
         nx, ny, nz, _ = self._k
         front, back = self._faces  # shared, unchangeable normals, as for InfinitePlane
-        return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
-                       back if dx * nx + dy * ny + dz * nz > 0.0 else front, t)
+        return HitData(True, None, back if dx * nx + dy * ny + dz * nz > 0.0 else front, t,
+                       -1, (self, ox, oy, oz, dx, dy, dz))
 
 
 # ------------------------------------------------------------------------------------------

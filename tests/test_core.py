@@ -1,4 +1,5 @@
 """Unit tests for PyRT_Core, against values computed by hand."""
+import copy
 import math
 
 import cv2
@@ -441,6 +442,19 @@ def test_a_miss_is_a_new_hitdata_whose_fields_students_may_assign():
     second.hit_distance = 1.0
     assert first is not second
     assert scene.closest_hit(ray((0, 0, 0), (0, 1, 0))).primitive_index == -1
+
+
+def test_hit_point_left_for_later_is_worked_out_once_and_can_be_assigned():
+    scene = overlapping(("far", "near"))
+    hit = scene.closest_hit(ray((0, 0, 0), (0, 0, -1)))
+    first = hit.hit_point
+    assert (first.x, first.y, first.z) == (0.0, 0.0, -4.0)  # the near sphere, at z = -5 + 1
+    assert first is hit.hit_point  # worked out on the first read, then kept
+    copied = copy.deepcopy(hit)
+    assert (copied.hit_point.x, copied.hit_point.y, copied.hit_point.z) == (
+        first.x, first.y, first.z)
+    hit.hit_point = Vector3D(1.0, 2.0, 3.0)
+    assert (hit.hit_point.x, hit.hit_point.y, hit.hit_point.z) == (1.0, 2.0, 3.0)
 
 
 def test_closest_hit_on_empty_scene_is_a_miss():
