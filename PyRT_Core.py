@@ -6,7 +6,8 @@ distance as its normalised version.
 
 Speed note: ``Scene.closest_hit`` and ``Scene.any_hit`` run for every ray, so they talk to
 the primitives through ``_distance``, which takes the ray as plain floats and returns the
-distance or None; only the nearest hit is turned into a ``HitData``.
+distance or None; only the nearest hit is turned into a ``HitData`` (by ``_hit_data``), and
+its point only when it is read.
 """
 import io
 import os
@@ -29,9 +30,9 @@ UNIT_LOW, UNIT_HIGH = 1.0 - 1e-12, 1.0 + 1e-12
 # not open cracks along edges and corners, where neighbouring walls meet.
 EDGE_TOLERANCE = 1e-9
 # closest_hit: a later object must be nearer than TIE_SHRINK times the nearest distance so
-# far, that is nearer by more than a ten-billionth. Where two surfaces meet or overlap (the edges of the Cornell box
-# lie exactly on the image's diagonals), rounding would otherwise pick either of them, one
-# way on one machine and the other way on the next; this way the first in object_list wins.
+# far, nearer by more than a ten-billionth. Where two surfaces meet or overlap (the edges
+# of the Cornell box lie exactly on the image's diagonals), rounding would otherwise pick
+# either, one way on one machine and the other way on the next; so the first one wins.
 TIE_SHRINK = 1.0 - 1e-10
 
 

@@ -152,10 +152,12 @@ class Integrator(ABC):
         return row
 
     def _first_bad_color(self, rows, y0):
+        """The TypeError for the first pixel whose channels are not all numbers."""
         for y, row in enumerate(rows, y0):
-            for i, channel in enumerate(row):
-                if not isinstance(channel, (int, float, np.number)):
-                    return self._not_a_color(RGBColor(*row[i - i % 3:i - i % 3 + 3]), i // 3, y)
+            for x in range(len(row) // 3):
+                channels = row[3 * x:3 * x + 3]
+                if not all(isinstance(c, (int, float, np.number)) for c in channels):
+                    return self._not_a_color(RGBColor(*channels), x, y)
         return ValueError("render: the colours of the image do not form an array")
 
     def _not_a_color(self, color, x, y):
@@ -218,10 +220,10 @@ class Integrator(ABC):
 def _pixel_offsets(samples, y, width):
     """For each pixel of row y, the (u, v) points inside it that are sampled.
 
-    N samples form a jittered grid of a x b cells (a*b = N,
-    as square as N allows): one random point in each cell, so the samples cover the pixel
-    evenly. The random numbers depend only on the row, so an image is the same on every run
-    and for any number of workers."""
+    N samples form a jittered grid of a x b cells (a*b = N, as square as N allows: 4x4 for
+    16, 2x4 for 8): one random point in each cell, so the samples cover the pixel evenly.
+    The random numbers depend only on the row, so an image is the same on every run and
+    for any number of workers."""
     a = max(d for d in range(1, int(sqrt(samples)) + 1) if samples % d == 0)
     b = samples // a
     jitter = np.random.default_rng((SAMPLE_SEED, y)).random((width, samples, 2))
@@ -272,6 +274,7 @@ def _report_non_finite(image, name):
 
 
 def usable_cores():
+    """How many cores this process may run on."""
     if hasattr(os, "sched_getaffinity"):
         return len(os.sched_getaffinity(0))
     return os.cpu_count() or 1
