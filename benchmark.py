@@ -283,19 +283,23 @@ def speed_accuracy(size: int, samples: list, reference_samples: int, repeats: in
         curves.append((caption, points, slope))
         rows += [[caption, n, f"{seconds:.3f}", f"{rmse:.3e}", f"{psnr:.1f}"]
                  for n, seconds, rmse, psnr in points]
-        slopes.append([caption, f"{slope:.2f}"])
+        per_sample = loglog_slope([p[0] for p in points], [p[2] for p in points])
+        slopes.append([caption, f"{slope:.2f}", f"{per_sample:.2f}"])
     notes = (f"{size}x{size} pixels rendered with {workers} processes; time: median of "
              f"{repeats} call(s) of Integrator.render(). Error of the linear image "
              f"(scene.rendered_image) against the same scene rendered with "
              f"{reference_samples} samples per pixel: RMSE over all pixels and channels, and "
              "PSNR = 20 log10(peak / RMSE) with the peak taken as the reference's largest "
              "value. N = 1 is the ray through the pixel centre; N > 1 samples are jittered "
-             "over an even grid inside the pixel. The slope is the least-squares fit of "
-             "log RMSE against log time; plain random sampling converges as 1/sqrt(N), "
-             "slope -1/2 when the time grows in proportion to N.")
+             "over an even grid inside the pixel. The slopes are least-squares fits of "
+             "log RMSE against log time and against log N; plain random sampling "
+             "converges as 1/sqrt(N), slope -1/2 (against time too when the time grows in "
+             "proportion to N, which the fixed cost of each render spoils at small N).")
     tables = (markdown_table(["Image", "Samples/pixel (N)", "Time (s)", "RMSE", "PSNR (dB)"],
                              rows, 1)
-              + "\n\n" + markdown_table(["Image", "Slope of log RMSE vs log time"], slopes, 1)
+              + "\n\n" + markdown_table(
+                  ["Image", "Slope of log RMSE vs log time", "Slope of log RMSE vs log N"],
+                  slopes, 1)
               + "\n\n" + notes)
     return tables, curves
 
