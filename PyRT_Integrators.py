@@ -38,9 +38,10 @@ SHADOW_EPSILON = 1e-6
 # coordinates: far above the rounding error of a hit point (about 1e-16 relative), far below
 # any detail of the scene, and the same at every scale of the scene.
 OFFSET_SCALE = 2.0 ** -32
-# With workers=None, a render that one process finishes sooner than this stays in one
-# process: starting workers costs more than they save.
-PARALLEL_MIN_SECONDS = 1.0
+# With workers=None, a render that one process would finish sooner than this stays in
+# one process: starting workers would cost more than they save. Forked workers (Linux)
+# start in milliseconds; spawned ones (Windows, macOS) import everything again first.
+PARALLEL_MIN_SECONDS = {"fork": 0.2, "spawn": 3.0, "forkserver": 3.0}
 SAMPLE_SEED = 0x5079_5254  # "PyRT"
 
 
@@ -182,7 +183,8 @@ class Integrator(ABC):
         yield 0, self.render_rows(0, 1, samples)
         if workers is None:
             rest = (time.perf_counter() - start) * (height - 1)
-            workers = usable_cores() if rest > PARALLEL_MIN_SECONDS else 1
+            method = multiprocessing.get_context().get_start_method()
+            workers = usable_cores() if rest > PARALLEL_MIN_SECONDS[method] else 1
         blocks = _row_blocks(1, height, workers)
         payload = None
         if workers > 1 and len(blocks) > 1:
