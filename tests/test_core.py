@@ -543,6 +543,26 @@ def test_save_image_overwrites_previous_files(tmp_path):
     np.testing.assert_array_equal(np.load(base + ".npy"), np.full((2, 2, 3), 3.0))
 
 
+def test_save_image_leaves_no_temporary_files(tmp_path):
+    scene_with_image(np.ones((2, 2, 3))).save_image(str(tmp_path / "picture"))
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "picture.hdr", "picture.npy", "picture.png"]
+
+
+def test_failed_save_keeps_the_previous_file_whole(tmp_path, monkeypatch):
+    base = str(tmp_path / "picture")
+    scene_with_image(np.ones((2, 2, 3))).save_image(base)
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+
+    def crash(source, target):  # the machine stops between writing and renaming
+        raise OSError("disk full")
+
+    monkeypatch.setattr(PyRT_Core.os, "replace", crash)
+    with pytest.raises(OSError, match="disk full"):
+        scene_with_image(np.full((2, 2, 3), 3.0)).save_image(base)
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
+
+
 # ------------------------------------------------------------------------------------------
 # Tonemapping
 # ------------------------------------------------------------------------------------------

@@ -7,6 +7,7 @@ pixel (x, y) of a width x height image looks along (x_s * width/height, y_s, -1)
 x_s = 2(x + 0.5)/width - 1 and y_s = 1 - 2(y + 0.5)/height. The centre pixel of an image
 with odd sides looks straight down -z."""
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -468,6 +469,23 @@ def test_integrator_holding_a_lambda_renders_in_one_process_and_says_why(tmp_pat
                         sphere_test_scene(width=32, height=32), workers=1)
     assert full.any()
     assert np.array_equal(half, full * 0.5)
+
+
+def test_with_a_debugger_attached_renders_in_one_process_and_says_why(tmp_path, capfd):
+    def tracer(frame, event, arg):  # what pdb and VSCode's debugger install
+        return None
+
+    sys.settrace(tracer)
+    try:
+        image = render_image(NormalIntegrator(str(tmp_path / "debugged")),
+                             sphere_test_scene(width=24, height=24), workers=2)
+    finally:
+        sys.settrace(None)
+    err = capfd.readouterr().err
+    assert "one process" in err and "debugger" in err
+    expected = render_image(NormalIntegrator(str(tmp_path / "plain")),
+                            sphere_test_scene(width=24, height=24), workers=1)
+    assert np.array_equal(image, expected)
 
 
 # ------------------------------------------------------------------------------------------
