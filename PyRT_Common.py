@@ -314,8 +314,9 @@ class EnvironmentMap:
     def __init__(self, path):
         path = Path(path)
         if not path.is_file():
-            raise FileNotFoundError(f"EnvironmentMap: no image file at {str(path)!r} "
-                                    f"(looked in {str(path.resolve().parent)!r})")
+            raise FileNotFoundError(f"EnvironmentMap: no image file at "
+                                    f"{str(path.resolve())!r}; give the path of a "
+                                    "latitude-longitude .hdr image")
         image = cv2.imread(str(path), cv2.IMREAD_ANYDEPTH | cv2.IMREAD_COLOR)
         if image is None:
             raise ValueError(f"EnvironmentMap: OpenCV cannot read {str(path)!r}; "
