@@ -17,7 +17,7 @@ from math import hypot, isfinite, tan
 from pathlib import Path
 
 from PyRT_Common import *
-from PyRT_Common import _ConstantVector
+from PyRT_Common import _ConstantVector, _restore_state
 
 # ------------------------------------------------------------------------------------------
 # Robustness constants
@@ -107,6 +107,8 @@ class _Shape:
 class Scene:
     """Everything that is rendered: camera, objects, point lights, ambient light i_a and an
     optional environment map, plus the image they are rendered into."""
+
+    __setstate__ = _restore_state
 
     def __init__(self):
         self.camera = None
@@ -272,6 +274,8 @@ def _write_atomically(path, data):
 class Primitive(ABC):
     """An object of the scene: a surface that rays can hit, with a material (BRDF) and an
     emitted radiance (BLACK unless the object is an area light)."""
+
+    __setstate__ = _restore_state
 
     def __init__(self, emission=BLACK):
         self.emission = _check_color(type(self).__name__, "emission", emission)
@@ -490,6 +494,8 @@ class BRDF(ABC):
     """How a surface reflects light: the ratio of radiance leaving towards wo to irradiance
     arriving from wi (both unit vectors pointing away from the surface)."""
 
+    __setstate__ = _restore_state
+
     @abstractmethod
     def get_value(self, incoming, outgoing, normal):
         """The reflected fraction for light from ``incoming`` seen from ``outgoing``."""
@@ -520,6 +526,8 @@ class PointLight:
     """A point that emits ``intensity`` in every direction; the irradiance it gives a point
     at distance r, facing it, is intensity / r^2."""
 
+    __setstate__ = _restore_state
+
     def __init__(self, pos_, intensity_):
         self.pos = _check_vector("PointLight", "pos_", pos_)
         self.intensity = _check_color("PointLight", "intensity_", intensity_)
@@ -534,6 +542,8 @@ class Camera:
     Pixel (x, y) has screen coordinates x_s = 2(x + 0.5)/width - 1 and
     y_s = 1 - 2(y + 0.5)/height; its ray goes through the point
     (x_s * tan(fov/2) * aspect_ratio, y_s * tan(fov/2), -1) of the image plane z = -1."""
+
+    __setstate__ = _restore_state
 
     width = _Shape()
     height = _Shape()

@@ -20,7 +20,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from PyRT_Common import *
-from PyRT_Common import __all__ as _common_names, _ConstantVector
+from PyRT_Common import __all__ as _common_names, _ConstantVector, _restore_state
 
 __all__ = _common_names + [
     "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
@@ -56,6 +56,8 @@ class Integrator(ABC):
         scene.set_pixel(self.compute_color(ray), x, y)
     then ``scene.save_image(self.get_filename())``.
     """
+
+    __setstate__ = _restore_state
 
     tonemap = True  # the PNG goes through the course's tonemapper (see Scene.save_image)
 
