@@ -181,13 +181,15 @@ class Integrator(ABC):
 
     def _render_blocks(self, height, samples, workers):
         """Yields (first row, rows) blocks of the image, in any order."""
-        start = time.perf_counter()
-        yield 0, self.render_rows(0, 1, samples)
-        if workers is None:
+        first = 0
+        if workers is None:  # time the first row to see whether workers would pay off
+            start = time.perf_counter()
+            yield 0, self.render_rows(0, 1, samples)
+            first = 1
             rest = (time.perf_counter() - start) * (height - 1)
             method = multiprocessing.get_context().get_start_method()
             workers = usable_cores() if rest > PARALLEL_MIN_SECONDS[method] else 1
-        blocks = _row_blocks(1, height, workers)
+        blocks = _row_blocks(first, height, workers)
         payload = None
         if workers > 1 and len(blocks) > 1:
             payload, reason = _worker_payload(self)
