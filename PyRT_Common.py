@@ -5,7 +5,7 @@ also brings ``np``, ``cv2``, ``plt``, ``ABC``, ``abstractmethod`` and ``sqrt, ac
 atan2, floor, pi`` into their module.
 
 Speed note: the operators below are called millions of times per image, so every class uses
-``__slots__`` (smaller, faster attribute access) and every method is a single expression.
+``__slots__`` (smaller, faster attribute access) and builds its result in one step.
 """
 from abc import ABC, abstractmethod
 from math import acos, atan2, cos, floor, hypot, pi, sin, sqrt
@@ -37,6 +37,9 @@ _SCALAR_HINT = ("multiply a {cls} by a number only; for the element-wise product
                 "{cls} objects use a.multiply(b)")
 
 
+# ------------------------------------------------------------------------------------------
+# Pickling, for worker processes
+# ------------------------------------------------------------------------------------------
 def _restore_state(obj, state):
     """__setstate__ for the classes that worker processes receive pickled: setting the
     attributes one by one keeps CPython's compact attribute layout, which pickle's default
