@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from AppRenderer import cornell_box_scene, sphere_test_scene
+from benchmark import StudentPhongIntegrator
 from helpers import PNG_TOLERANCE, read_png, render_image, run_python
 from PyRT_Core import *
 from PyRT_Integrators import *
@@ -309,30 +310,6 @@ def test_phong_miss_is_black_not_ambient(tmp_path):
 # ------------------------------------------------------------------------------------------
 # Integrators written the way students write them
 # ------------------------------------------------------------------------------------------
-class StudentPhong(Integrator):
-    """Phong as the assignment describes it, with the course's operators and calls."""
-
-    def __init__(self, filename_):
-        super().__init__(filename_ + "_StudentPhong")
-
-    def compute_color(self, ray):
-        hit_data = self.scene.closest_hit(ray)
-        if not hit_data.has_hit:
-            return BLACK
-        brdf = self.scene.object_list[hit_data.primitive_index].get_BRDF()
-        color = brdf.kd.multiply(self.scene.i_a)
-        for light in self.scene.pointLights:
-            to_light = light.pos - hit_data.hit_point
-            distance = Length(to_light)
-            wi = to_light / distance
-            shadow_ray = Ray(hit_data.hit_point, wi, distance)
-            if not self.scene.any_hit(shadow_ray):
-                wo = ray.d * -1
-                reflected = brdf.get_value(wi, wo, hit_data.normal)
-                color = color + light.intensity.multiply(reflected) / (distance * distance)
-        return color
-
-
 class StudentLoop(PhongIntegrator):
     """Phong with the rendering loop of Assignment 1.1 written out by hand."""
 
@@ -348,7 +325,7 @@ class StudentLoop(PhongIntegrator):
 
 
 def test_student_phong_agrees_with_phong_integrator_on_the_cornell_box(tmp_path):
-    student = render_image(StudentPhong(str(tmp_path / "a")), small_cornell_box(60),
+    student = render_image(StudentPhongIntegrator(str(tmp_path / "a")), small_cornell_box(60),
                            workers=1)
     built_in = render_image(PhongIntegrator(str(tmp_path / "b")), small_cornell_box(60),
                             workers=1)
