@@ -78,8 +78,12 @@ def _check_positive(owner, name, value):
 
 
 def _unit(d):
-    """The components of d / |d|, or a ValueError when d has no direction."""
-    length = hypot(d.x, d.y, d.z)  # hypot, unlike sqrt(x*x + ...), never over/underflows
+    """The components of the unit direction of d: d itself when it is unit length to within
+    rounding, d / |d| otherwise; a ValueError when d has no direction."""
+    dx, dy, dz = d.x, d.y, d.z
+    if UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:
+        return dx, dy, dz
+    length = hypot(dx, dy, dz)  # hypot, unlike sqrt(x*x + ...), never over/underflows
     if not 0.0 < length < INFINITY:
         raise ValueError(f"the ray direction must be a non-zero finite vector, got {d!r}; "
                          "set ray.d before tracing the ray")
@@ -142,9 +146,9 @@ class Scene:
                             f"got {light!r}")
         self.pointLights.append(light)
 
-    # any_hit and closest_hit run for every ray: they read the ray once into floats, use
-    # its direction as it is when it is unit length to within rounding (camera and shadow
-    # rays are), and normalise it otherwise.
+    # any_hit and closest_hit run for every ray: they read the ray once into floats, and
+    # repeat _unit's unit-length test inline (camera and shadow rays pass it) so that the
+    # common case costs no function call.
     def any_hit(self, ray):
         """True when the ray hits any object at a distance in [ray.t_min, ray.t_max]."""
         o, d = ray.o, ray.d

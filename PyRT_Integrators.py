@@ -89,8 +89,9 @@ class Integrator(ABC):
             # sees the worker fail and renders on its own, saying why.
             raise SystemExit(1)
         scene = self._checked_scene()
-        samples = _check_samples(samples_per_pixel)
-        workers = _check_workers(workers)
+        samples = _check_count("samples_per_pixel", samples_per_pixel)
+        if workers is not None:
+            workers = _check_count("workers", workers, "None (all cores) or a whole number >= 1")
         filename = self.get_filename()
         _check_writable(Path(filename).resolve().parent)
         height, width = scene.camera.height, scene.camera.width
@@ -239,20 +240,11 @@ def _pixel_offsets(samples, y, width):
     return np.stack((u, v), axis=2).tolist()
 
 
-def _check_samples(samples):
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
-        raise ValueError(f"render: samples_per_pixel must be a whole number >= 1, "
-                         f"got {samples!r}")
-    return int(samples)
-
-
-def _check_workers(workers):
-    if workers is None:
-        return None
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"render: workers must be None (all cores) or a whole number >= 1, "
-                         f"got {workers!r}")
-    return int(workers)
+def _check_count(name, value, allowed="a whole number >= 1"):
+    """value as an int, or a ValueError naming the render() argument and what is allowed."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ValueError(f"render: {name} must be {allowed}, got {value!r}")
+    return int(value)
 
 
 def _check_writable(folder):
