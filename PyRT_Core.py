@@ -9,7 +9,6 @@ the primitives through ``_distance``, which takes the ray as plain floats and re
 distance or None; only the nearest hit is turned into a ``HitData`` (by ``_hit_data``), and
 its point only when it is read.
 """
-import io
 import os
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
@@ -214,17 +213,17 @@ class Scene:
                                "scene.set_camera(camera) and render first")
         base = Path(full_filename)
         base.parent.mkdir(parents=True, exist_ok=True)
-        with ThreadPoolExecutor(1) as pool:  # the raw files are encoded meanwhile
-            raw = pool.submit(_raw_files, image)
+        # The linear files are written on a second thread meanwhile: the encoders, numpy's
+        # arithmetic and the writes all run without holding Python's global lock.
+        with ThreadPoolExecutor(1) as pool:
+            linear = pool.submit(_write_linear_files, image, base)
             display = tonemap_image(image) if tonemap else np.clip(np.nan_to_num(image), 0, 1)
-            png = io.BytesIO()
             # 8 bits as matplotlib makes them from floats, floor(255 v); zlib's fastest
             # level writes twice as fast for a slightly larger file.
-            plt.imsave(png, (display * 255.0).astype(np.uint8), format="png",
-                       pil_kwargs={"compress_level": 1})
-            files = {".png": png.getvalue(), **raw.result()}
-        for suffix, data in files.items():
-            _write_atomically(base.parent / (base.name + suffix), data)
+            pixels = np.multiply(display, 255.0, out=display).astype(np.uint8)
+            _write_atomically(_with_suffix(base, ".png"), lambda f: plt.imsave(
+                f, pixels, format="png", pil_kwargs={"compress_level": 1}))
+            linear.result()
 
 
 def tonemap_image(image, gamma=2.5):
@@ -235,37 +234,43 @@ def tonemap_image(image, gamma=2.5):
     Unlike OpenCV it ignores non-finite values when it looks for the minimum and maximum,
     so one NaN from a buggy integrator does not turn the whole picture black; NaN and -inf
     pixels are shown as the minimum, +inf as the maximum."""
-    if np.isfinite(image).all():
-        lo, hi, out = float(image.min()), float(image.max()), image.copy()
-    else:
+    lo, hi = float(image.min()), float(image.max())  # NaN if any pixel is NaN
+    out = image
+    if not (isfinite(lo) and isfinite(hi)):
         finite = np.isfinite(image)
         if not finite.any():
             return np.zeros(image.shape, np.float32)
         lo, hi = float(image[finite].min()), float(image[finite].max())
         out = np.nan_to_num(image, nan=lo, posinf=hi, neginf=lo)
     if hi - lo > np.finfo(float).eps:  # OpenCV leaves a flat image as it is
-        out -= lo
+        out = np.subtract(out, lo)
         out /= hi - lo
     # The power in single precision, as OpenCV computes it (and twice as fast as double).
-    out = np.clip(out, 0.0, 1.0).astype(np.float32)
-    return np.power(out, np.float32(1.0 / gamma), out=out)
+    # Clipping straight into the single-precision array saves a temporary image.
+    display = np.clip(out, 0.0, 1.0, out=np.empty(image.shape, np.float32))
+    return np.power(display, np.float32(1.0 / gamma), out=display)
 
 
-def _raw_files(image):
-    """The .npy and .hdr files of the linear image, as bytes."""
-    npy = io.BytesIO()
-    np.save(npy, image)
+def _write_linear_files(image, base):
+    """Writes the .npy and .hdr files of the linear image."""
     ok, hdr = cv2.imencode(".hdr", np.ascontiguousarray(image[:, :, ::-1], np.float32))
     if not ok:
         raise RuntimeError("Scene.save_image: OpenCV could not encode the HDR image")
-    return {".npy": npy.getvalue(), ".hdr": hdr.tobytes()}
+    _write_atomically(_with_suffix(base, ".hdr"), lambda f: f.write(hdr))
+    _write_atomically(_with_suffix(base, ".npy"), lambda f: np.save(f, image))
 
 
-def _write_atomically(path, data):
+def _with_suffix(base, suffix):
+    return base.parent / (base.name + suffix)
+
+
+def _write_atomically(path, write):
+    """Calls write(file) on a temporary file that then replaces path, so that path is
+    always either the previous file or the new one, never half written."""
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix="." + path.name, suffix=".tmp")
     try:
         with os.fdopen(fd, "wb") as f:
-            f.write(data)
+            write(f)
         os.replace(tmp, path)
     except BaseException:
         os.unlink(tmp)
