@@ -6,15 +6,16 @@ centre, and saves the image. Write your own integrator by subclassing ``Integrat
 overriding ``compute_color``.
 """
 import copy
+import mmap
 import multiprocessing
+import multiprocessing.connection
 import os
 import pickle
 import signal
 import sys
 import tempfile
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from concurrent.futures.process import BrokenProcessPool
+import traceback
 from pathlib import Path
 
 from tqdm import tqdm
@@ -40,8 +41,10 @@ SHADOW_EPSILON = 1e-6
 OFFSET_SCALE = 2.0 ** -32
 # With workers=None, a render that one process would finish sooner than this stays in
 # one process: starting workers would cost more than they save. Forked workers (Linux)
-# start in milliseconds; spawned ones (Windows, macOS) import everything again first.
-PARALLEL_MIN_SECONDS = {"fork": 0.2, "spawn": 3.0, "forkserver": 3.0}
+# start in milliseconds; spawned ones (Windows, macOS) first import everything again,
+# which took 0.65 s on a 2-core Linux machine and takes longer on most laptops. This
+# process renders meanwhile, so a worker that starts late only takes fewer rows.
+PARALLEL_MIN_SECONDS = {"fork": 0.2, "spawn": 2.0, "forkserver": 2.0}
 SAMPLE_SEED = 0x5079_5254  # "PyRT"
 
 
@@ -78,8 +81,9 @@ class Integrator(ABC):
     def render(self, workers=None, samples_per_pixel=1, progress=True):
         """Renders every pixel and saves the image.
 
-        workers: how many processes render: None uses every core (for renders long enough
-            to gain from them), 1 renders in this process. The image is the same either way.
+        workers: how many processes render, this one included: None uses every core (for
+            renders long enough to gain from them), 1 renders in this process only. The
+            image is the same either way.
         samples_per_pixel: rays per pixel, averaged; 1 is the ray through the centre, more
             (jittered over an even grid inside the pixel) smooth jagged edges.
         progress: show a progress bar with the time left."""
@@ -200,25 +204,51 @@ class Integrator(ABC):
             for y0, y1 in blocks:
                 yield y0, self.render_rows(y0, y1, samples)
             return
-        pending = dict.fromkeys(blocks)
-        pool = ProcessPoolExecutor(min(workers, len(blocks)), initializer=_start_worker,
-                                   initargs=(payload,))
+        yield from self._render_with_workers(blocks, samples, workers - 1, payload)
+
+    def _render_with_workers(self, blocks, samples, count, payload):
+        """Yields the blocks rendered by this process and by `count` worker processes.
+
+        Every process takes the next block not yet taken (a counter in shared memory), so
+        this process renders from the start and a worker that starts late simply takes
+        fewer. Workers write their rows straight into an image in shared memory and raise a
+        flag per finished block: no pixels travel through pipes, and no process waits for
+        another to hand out work. Each worker sends one message as it stops: None, or the
+        error that stopped it."""
+        mp = multiprocessing.get_context()
+        camera = self.scene.camera
+        shared = _SharedImage(mp, camera.height, camera.width, len(blocks))
+        unreported = dict(enumerate(blocks))
+        workers = []  # (process, receiving end of its pipe)
+        for _ in range(count):
+            receiver, sender = mp.Pipe(duplex=False)
+            process = mp.Process(target=_worker, args=(payload, blocks, samples, shared, sender),
+                                 daemon=True)
+            process.start()
+            sender.close()
+            workers.append((process, receiver))
+        running = list(workers)
         try:
-            futures = {pool.submit(_render_block, y0, y1, samples): (y0, y1)
-                       for y0, y1 in blocks}
-            for future in as_completed(futures):
-                rows = future.result()
-                del pending[futures[future]]
-                yield futures[future][0], rows
-        except BrokenProcessPool:
-            print("PyRT: rendering in one process: the worker processes could not start. "
-                  "If this script runs on Windows or macOS (or with the 'spawn' start "
-                  "method), put the code that builds and renders the scene under\n"
-                  "    if __name__ == \"__main__\":", file=sys.stderr)
-            for y0, y1 in pending:
+            while (i := shared.take()) is not None:
+                y0, y1 = unreported.pop(i)
                 yield y0, self.render_rows(y0, y1, samples)
+                yield from _reported(shared, unreported, running, timeout=0)
+            while unreported and running:  # all blocks are taken: wait for the last ones
+                yield from _reported(shared, unreported, running, timeout=0.1)
+        except KeyboardInterrupt:
+            shared.stop()
+            yield from _reported(shared, unreported, [], timeout=0)  # for the partial image
+            raise
         finally:
-            pool.shutdown(wait=False, cancel_futures=True)
+            shared.stop()
+            for process, _ in running:  # its rows are in, or the render stopped on an error
+                process.terminate()
+            # Until a worker has exited, the memory pages it inherited are shared with this
+            # process, copy on write: writing any of them (saving the image) copies it first.
+            for process, _ in workers:
+                process.join()
+        for y0, y1 in list(unreported.values()):  # taken by a worker that stopped early
+            yield y0, self.render_rows(y0, y1, samples)
 
 
 # ------------------------------------------------------------------------------------------
@@ -310,17 +340,96 @@ def _worker_payload(integrator):
                       "prevent it")
 
 
-_worker_integrator = None
+class _SharedImage:
+    """What the processes rendering one image share: the image, how many blocks have been
+    taken and a finished flag per block."""
+
+    def __init__(self, mp, height, width, blocks):
+        self.shape = (height, width, 3)
+        if mp.get_start_method() == "fork":
+            # Forked workers inherit this mapping. Its pages are zeroed as they are first
+            # written, half of them by the worker, where RawArray zeroes all 6 MB of a
+            # 500 x 500 image here, before the worker can start.
+            self.buffer = mmap.mmap(-1, height * width * 3 * 8)
+        else:
+            self.buffer = mp.RawArray("d", height * width * 3)
+        self.taken = mp.Value("i", 0)
+        self.finished = mp.Array("b", blocks)
+
+    def image(self):
+        return np.frombuffer(self.buffer).reshape(self.shape)
+
+    def take(self):
+        """The index of the next block to render, or None when all are taken."""
+        with self.taken.get_lock():
+            i = self.taken.value
+            if i >= len(self.finished):
+                return None
+            self.taken.value = i + 1
+        return i
+
+    def stop(self):
+        with self.taken.get_lock():
+            self.taken.value = len(self.finished)
+
+    def finish(self, i):
+        with self.finished.get_lock():  # the lock also publishes the rows written before
+            self.finished[i] = 1
+
+    def finished_blocks(self):
+        with self.finished.get_lock():
+            return self.finished[:]
 
 
-def _start_worker(payload):
-    global _worker_integrator
+def _worker(payload, blocks, samples, shared, results):
+    """A worker process: renders the blocks it takes into the shared image."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C is handled once, by the main process
-    _worker_integrator = pickle.loads(payload)
+    try:
+        integrator = pickle.loads(payload)
+        image = shared.image()
+        while (i := shared.take()) is not None:
+            y0, y1 = blocks[i]
+            image[y0:y1] = integrator.render_rows(y0, y1, samples)
+            shared.finish(i)
+        results.send(None)
+    except BaseException as error:
+        try:
+            pickle.loads(pickle.dumps(error))
+        except Exception:  # an error that cannot travel between processes: send its text
+            error = RuntimeError(f"{type(error).__name__}: {error}")
+        results.send((error, traceback.format_exc()))
 
 
-def _render_block(y0, y1, samples):
-    return _worker_integrator.render_rows(y0, y1, samples)
+class _WorkerTraceback(Exception):
+    """Where in a worker process an error was raised, shown above the error itself."""
+
+    def __str__(self):
+        return "\n" + self.args[0]
+
+
+def _reported(shared, unreported, running, timeout):
+    """Yields the blocks that workers finished since the last call, raises the error that
+    stopped a worker, and takes the workers that stopped out of running."""
+    ready = multiprocessing.connection.wait([receiver for _, receiver in running], timeout)
+    for process, receiver in [worker for worker in running if worker[1] in ready]:
+        running.remove((process, receiver))
+        try:
+            message = receiver.recv()
+        except EOFError:  # it died, or could not start
+            process.join()
+            print(f"PyRT: a worker process stopped early (exit code {process.exitcode}); "
+                  "this process renders its rows. If this script runs on Windows or macOS "
+                  "(or with the 'spawn' start method), put the code that builds and renders "
+                  "the scene under\n    if __name__ == \"__main__\":", file=sys.stderr)
+            continue
+        if message is not None:
+            error, where = message
+            raise error from _WorkerTraceback(where)
+    flags = shared.finished_blocks()
+    image = shared.image()
+    for i in [i for i in unreported if flags[i]]:
+        y0, y1 = unreported.pop(i)
+        yield y0, image[y0:y1]
 
 
 # ------------------------------------------------------------------------------------------

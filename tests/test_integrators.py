@@ -7,7 +7,10 @@ pixel (x, y) of a width x height image looks along (x_s * width/height, y_s, -1)
 x_s = 2(x + 0.5)/width - 1 and y_s = 1 - 2(y + 0.5)/height. The centre pixel of an image
 with odd sides looks straight down -z."""
 import math
+import multiprocessing
+import os
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -347,19 +350,80 @@ def test_student_render_loop_saves_what_the_built_in_render_saves(tmp_path):
 # ------------------------------------------------------------------------------------------
 # Parallel rendering
 # ------------------------------------------------------------------------------------------
+class WorkerRendersFirst(PhongIntegrator):
+    """Phong whose main process holds back its first block until a worker process has
+    rendered one (it leaves a marker file), so that both surely render part of the image.
+    With raise_in_worker = (exception class, arguments), the worker raises that exception
+    instead, after leaving the marker."""
+
+    def __init__(self, filename_, marker, raise_in_worker=None):
+        super().__init__(filename_)
+        self.marker = str(marker)
+        self.raise_in_worker = raise_in_worker
+
+    def render_rows(self, y0, y1, samples_per_pixel=1):
+        if multiprocessing.parent_process() is not None:  # a worker process
+            rows = super().render_rows(y0, y1, samples_per_pixel)
+            open(self.marker, "a").close()
+            if self.raise_in_worker:
+                error_class, arguments = self.raise_in_worker
+                raise error_class(*arguments)
+            return rows
+        wait_for_file(self.marker)
+        return super().render_rows(y0, y1, samples_per_pixel)
+
+
+def wait_for_file(path, seconds=60):
+    deadline = time.monotonic() + seconds
+    while not os.path.exists(path) and time.monotonic() < deadline:
+        time.sleep(0.005)
+
+
 @pytest.mark.parametrize("samples", [1, 4])
 def test_one_and_two_workers_give_identical_images(tmp_path, capfd, samples):
     one = render_image(PhongIntegrator(str(tmp_path / "one")), small_cornell_box(64),
                        workers=1, samples_per_pixel=samples)
-    two = render_image(PhongIntegrator(str(tmp_path / "two")), small_cornell_box(64),
-                       workers=2, samples_per_pixel=samples)
-    assert "one process" not in capfd.readouterr().err  # the two workers did render
+    marker = tmp_path / "worker_rendered"
+    two = render_image(WorkerRendersFirst(str(tmp_path / "two"), marker),
+                       small_cornell_box(64), workers=2, samples_per_pixel=samples)
+    assert marker.exists(), "no worker process rendered a block"
+    assert "one process" not in capfd.readouterr().err
     assert one.any()
     assert np.array_equal(one, two)
 
 
+def test_error_in_a_worker_process_is_raised_with_the_worker_traceback(tmp_path):
+    integrator = WorkerRendersFirst(str(tmp_path / "bad"), tmp_path / "marker",
+                                    raise_in_worker=(ZeroDivisionError, ["raised in a worker"]))
+    integrator.add_scene(small_cornell_box(32))
+    with pytest.raises(ZeroDivisionError, match="raised in a worker") as raised:
+        integrator.render(workers=2, progress=False)
+    assert "render_rows" in str(raised.value.__cause__)  # where the worker raised it
+
+
+class NeedsTwoArguments(Exception):
+    """An exception that pickle cannot rebuild: its __init__ wants two arguments."""
+
+    def __init__(self, reason, code):
+        super().__init__(f"{reason} ({code})")
+
+
+def test_error_that_cannot_leave_a_worker_is_raised_as_its_text(tmp_path):
+    integrator = WorkerRendersFirst(str(tmp_path / "bad"), tmp_path / "marker",
+                                    raise_in_worker=(NeedsTwoArguments, ["odd failure", 7]))
+    integrator.add_scene(small_cornell_box(32))
+    with pytest.raises(RuntimeError, match=r"NeedsTwoArguments: odd failure \(7\)"):
+        integrator.render(workers=2, progress=False)
+
+
 # An integrator that exists only in the script that renders it, as students write them.
+# Its main process holds back its rendering until a worker process has rendered a block
+# or has stopped, as in a render that lasts longer than a worker takes to start.
 OWN_INTEGRATOR = '''
+import multiprocessing
+import os
+import time
+
 from PyRT_Integrators import *
 from AppRenderer import cornell_box_scene
 
@@ -373,11 +437,20 @@ class DistanceAndIndex(Integrator):
         if not hit.has_hit:
             return BLACK
         return RGBColor(1.0 / hit.hit_distance, hit.primitive_index / 10.0, 0.5)
+
+    def render_rows(self, y0, y1, samples_per_pixel=1):
+        rows = super().render_rows(y0, y1, samples_per_pixel)
+        if multiprocessing.parent_process() is not None:  # a worker process
+            open("worker_rendered", "a").close()
+        else:
+            deadline = time.monotonic() + 60
+            while (multiprocessing.active_children() and not os.path.exists("worker_rendered")
+                   and time.monotonic() < deadline):
+                time.sleep(0.005)
+        return rows
 '''
 
 GUARDED_SPAWN_SCRIPT = OWN_INTEGRATOR + '''
-import multiprocessing
-
 if __name__ == "__main__":
     multiprocessing.set_start_method("spawn")
     integrator = DistanceAndIndex("spawned")
@@ -388,8 +461,6 @@ if __name__ == "__main__":
 # Without the guard every worker re-runs the whole script. force=True lets the workers get
 # as far as render(), as they do on Windows, where 'spawn' is the default.
 UNGUARDED_SPAWN_SCRIPT = OWN_INTEGRATOR + '''
-import multiprocessing
-
 multiprocessing.set_start_method("spawn", force=True)
 integrator = DistanceAndIndex("spawned")
 integrator.add_scene(cornell_box_scene(0.75, 2, width=24, height=24))
@@ -413,7 +484,8 @@ def run_spawn_script(tmp_path, source):
 def test_spawn_start_method_renders_an_own_integrator_with_two_workers(tmp_path):
     result = run_spawn_script(tmp_path, GUARDED_SPAWN_SCRIPT)
     assert result.returncode == 0, result.stderr
-    assert "one process" not in result.stderr
+    assert (tmp_path / "worker_rendered").exists(), "no worker process rendered a block"
+    assert "stopped early" not in result.stderr
     image = np.load(tmp_path / "spawned_DistanceAndIndex.npy")
     assert np.array_equal(image, own_integrator_image(tmp_path))
 
@@ -422,6 +494,7 @@ def test_unguarded_spawn_script_still_renders_and_explains_the_main_guard(tmp_pa
     result = run_spawn_script(tmp_path, UNGUARDED_SPAWN_SCRIPT)
     assert result.returncode == 0, result.stderr
     assert 'if __name__ == "__main__":' in result.stdout + result.stderr
+    assert not (tmp_path / "worker_rendered").exists()
     image = np.load(tmp_path / "spawned_DistanceAndIndex.npy")
     assert np.array_equal(image, own_integrator_image(tmp_path))
 
@@ -619,6 +692,29 @@ def test_ctrl_c_saves_the_rows_rendered_so_far_and_re_raises(tmp_path, capfd):
             assert tuple(saved[y, x]) == ((x + 10 * y) / 100,) * 3, (x, y)
     assert not saved[3:].any()
     assert partial in capfd.readouterr().err
+
+
+class InterruptedAfterAWorkerBlock(WorkerRendersFirst):
+    """Stopped with Ctrl+C in the main process, once a worker process has rendered a block."""
+
+    def render_rows(self, y0, y1, samples_per_pixel=1):
+        rows = super().render_rows(y0, y1, samples_per_pixel)
+        if multiprocessing.parent_process() is None:
+            raise KeyboardInterrupt
+        return rows
+
+
+def test_ctrl_c_with_workers_keeps_the_rows_the_workers_finished(tmp_path):
+    full = render_image(PhongIntegrator(str(tmp_path / "full")), small_cornell_box(32),
+                        workers=1)
+    integrator = InterruptedAfterAWorkerBlock(str(tmp_path / "img"), tmp_path / "marker")
+    integrator.add_scene(small_cornell_box(32))
+    with pytest.raises(KeyboardInterrupt):
+        integrator.render(workers=2, progress=False)
+    partial = np.load(tmp_path / "img_Phong_partial.npy")
+    rendered = partial.any(axis=(1, 2))
+    assert rendered.any() and not rendered.all()
+    assert np.array_equal(partial[rendered], full[rendered])
 
 
 def test_unwritable_output_folder_fails_before_rendering(tmp_path):
