@@ -5,8 +5,8 @@ Depth with max_depth 5, Normal and Phong on the sphere scene; Phong on the Corne
 for a plain "student" Phong integrator on both scenes (StudentPhongIntegrator below, written
 the way the assignment leads a student to write it), the time Integrator.render() takes, in
 microseconds per pixel, with one process and with all cores, and the speed-up between the
-two. Each time is the median of --repeats renders. It is printed as a Markdown table and
-written to out/benchmark.md.
+two. Each time is the median of --repeats renders, one-process and all-core renders taking
+turns. It is printed as a Markdown table and written to out/benchmark.md.
 
 Part 2, speed against accuracy. For Phong on the Cornell box (Figure 1) and Depth, Normal
 and Phong on the sphere scene (Figures 4 and 5), a small image rendered with all cores at
@@ -30,7 +30,7 @@ a temporary folder that is deleted at the end:
     python benchmark.py --help                # all options
 
 How long it takes: with the defaults, about 2.5 minutes on a machine with 2 cores (about
-1.5 minutes for part 1 and 1 minute for part 2). Part 1 grows with the square of --size,
+1.7 minutes for part 1 and 45 seconds for part 2). Part 1 grows with the square of --size,
 part 2 with the square of --accuracy-size and with --reference-samples, both with
 --repeats.
 """
@@ -95,13 +95,22 @@ class StudentPhongIntegrator(Integrator):
 def time_render(integrator: Integrator, workers: int, repeats: int,
                 samples_per_pixel: int = 1) -> float:
     """The median time, in seconds, of `repeats` calls of integrator.render()."""
-    times = []
+    return time_renders(integrator, [workers], repeats, samples_per_pixel)[0]
+
+
+def time_renders(integrator: Integrator, worker_counts: list, repeats: int,
+                 samples_per_pixel: int = 1) -> list:
+    """For each worker count, the median time in seconds of `repeats` calls of
+    integrator.render(). The counts take turns, so that a slow spell of the machine
+    slows them alike instead of one of them."""
+    times = [[] for _ in worker_counts]
     for _ in range(repeats):
-        start = time.perf_counter()
-        integrator.render(workers=workers, samples_per_pixel=samples_per_pixel,
-                          progress=False)
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
+        for workers, counted in zip(worker_counts, times):
+            start = time.perf_counter()
+            integrator.render(workers=workers, samples_per_pixel=samples_per_pixel,
+                              progress=False)
+            counted.append(time.perf_counter() - start)
+    return [statistics.median(counted) for counted in times]
 
 
 def prepared(name: str, figure: str, scene: str, max_depth, size: int,
@@ -183,8 +192,7 @@ def speed_table(size: int, repeats: int, workers: int, folder: Path) -> str:
     for number, (figure, name, scene, max_depth) in enumerate(jobs, 1):
         integrator = prepared(name, figure, scene, max_depth, size, folder)
         progress(f"[{number}/{len(jobs)}] {label(integrator)} on the {SCENE_NAMES[scene]}")
-        one = time_render(integrator, 1, repeats)
-        many = time_render(integrator, workers, repeats)
+        one, many = time_renders(integrator, [1, workers], repeats)
         rows.append([figure_label(figure), label(integrator), SCENE_NAMES[scene],
                      f"{one / pixels * 1e6:.2f}", f"{many / pixels * 1e6:.2f}",
                      f"{one / many:.2f}"])
@@ -321,9 +329,9 @@ def parse_args(argv: list | None) -> argparse.Namespace:
     parser.add_argument("--size", type=positive_arg(int), default=500,
                         help="part 1: image width and height in pixels (default 500, as in "
                              "the course)")
-    parser.add_argument("--repeats", type=positive_arg(int), default=3,
+    parser.add_argument("--repeats", type=positive_arg(int), default=5,
                         help="renders per measurement, of which the median time counts "
-                             "(default 3)")
+                             "(default 5)")
     parser.add_argument("--workers", type=positive_arg(int), default=usable_cores(),
                         help="processes for the 'all cores' measurements (default: all "
                              f"usable cores, here {usable_cores()})")
