@@ -204,7 +204,8 @@ class Integrator(ABC):
             for y0, y1 in blocks:
                 yield y0, self.render_rows(y0, y1, samples)
             return
-        yield from self._render_with_workers(blocks, samples, workers - 1, payload)
+        yield from self._render_with_workers(blocks, samples, min(workers, len(blocks)) - 1,
+                                             payload)
 
     def _render_with_workers(self, blocks, samples, count, payload):
         """Yields the blocks rendered by this process and by `count` worker processes.
@@ -328,6 +329,9 @@ def _worker_payload(integrator):
     if "debugpy" in sys.modules or "pydevd" in sys.modules or (
             trace is not None and not tracer_module.startswith("coverage")):
         return None, "a debugger is attached (so that breakpoints in compute_color work)"
+    if multiprocessing.current_process().daemon:
+        return None, ("this process is itself a daemonic worker process (of a "
+                      "multiprocessing.Pool, say), which may not start processes")
     scene = copy.copy(integrator.scene)
     scene.rendered_image = None
     integrator = copy.copy(integrator)

@@ -538,6 +538,23 @@ def test_with_a_debugger_attached_renders_in_one_process_and_says_why(tmp_path, 
     assert np.array_equal(image, expected)
 
 
+def render_normal_with_two_workers(filename):
+    return render_image(NormalIntegrator(filename), sphere_test_scene(width=24, height=24),
+                        workers=2)
+
+
+def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_path, capfd):
+    # A teaching assistant may render every student's integrator in a multiprocessing.Pool,
+    # whose (daemonic) workers may not start processes of their own.
+    with multiprocessing.Pool(1) as pool:
+        image = pool.apply(render_normal_with_two_workers, (str(tmp_path / "pooled"),))
+    err = capfd.readouterr().err
+    assert "one process" in err and "daemonic" in err
+    expected = render_image(NormalIntegrator(str(tmp_path / "plain")),
+                            sphere_test_scene(width=24, height=24), workers=1)
+    assert np.array_equal(image, expected)
+
+
 # ------------------------------------------------------------------------------------------
 # Anti-aliasing: samples_per_pixel
 # ------------------------------------------------------------------------------------------
