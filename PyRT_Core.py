@@ -10,7 +10,7 @@ distance or None; only the nearest hit is turned into a ``HitData`` (by ``_hit_d
 its point only when it is read.
 """
 import os
-import tempfile
+import threading
 from concurrent.futures import ThreadPoolExecutor
 from math import hypot, isfinite, tan
 from pathlib import Path
@@ -266,14 +266,16 @@ def _with_suffix(base, suffix):
 
 def _write_atomically(path, write):
     """Calls write(file) on a temporary file that then replaces path, so that path is
-    always either the previous file or the new one, never half written."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix="." + path.name, suffix=".tmp")
+    always either the previous file or the new one, never half written. The temporary
+    file is created like any other file (readable by others, as the umask allows), where
+    tempfile.mkstemp would make it private to its owner."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}-{threading.get_ident()}.tmp")
     try:
-        with os.fdopen(fd, "wb") as f:
+        with open(tmp, "wb") as f:
             write(f)
         os.replace(tmp, path)
     except BaseException:
-        os.unlink(tmp)
+        tmp.unlink(missing_ok=True)
         raise
 
 

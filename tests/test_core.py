@@ -1,6 +1,8 @@
 """Unit tests for PyRT_Core, against values computed by hand."""
 import copy
 import math
+import os
+import stat
 
 import cv2
 import matplotlib.pyplot as plt
@@ -547,6 +549,17 @@ def test_save_image_leaves_no_temporary_files(tmp_path):
     scene_with_image(np.ones((2, 2, 3))).save_image(str(tmp_path / "picture"))
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         "picture.hdr", "picture.npy", "picture.png"]
+
+
+@pytest.mark.skipif(os.name == "nt", reason="Windows has no umask permission bits")
+def test_saved_files_are_readable_by_others_as_the_umask_allows(tmp_path):
+    previous = os.umask(0o022)
+    try:
+        scene_with_image(np.ones((2, 2, 3))).save_image(str(tmp_path / "picture"))
+    finally:
+        os.umask(previous)
+    for path in tmp_path.iterdir():
+        assert stat.S_IMODE(path.stat().st_mode) == 0o644, path.name
 
 
 def test_failed_save_keeps_the_previous_file_whole(tmp_path, monkeypatch):
