@@ -44,6 +44,7 @@ import tempfile
 import time
 from math import log10
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -95,17 +96,20 @@ class StudentPhongIntegrator(Integrator):
 def time_render(integrator: Integrator, workers: int, repeats: int,
                 samples_per_pixel: int = 1) -> float:
     """The median time, in seconds, of `repeats` calls of integrator.render()."""
-    return time_renders(integrator, [workers], repeats, samples_per_pixel)[0]
+    return time_renders(lambda: integrator, [workers], repeats, samples_per_pixel)[0]
 
 
-def time_renders(integrator: Integrator, worker_counts: list, repeats: int,
+def time_renders(make: Callable[[], Integrator], worker_counts: list, repeats: int,
                  samples_per_pixel: int = 1) -> list:
-    """For each worker count, the median time in seconds of `repeats` calls of
-    integrator.render(). The counts take turns, so that a slow spell of the machine
-    slows them alike instead of one of them."""
+    """For each worker count, the median time in seconds of `repeats` calls of render()
+    on an integrator from make(). The counts take turns, so that a slow spell of the
+    machine slows them alike instead of one of them. make() is called for each render:
+    objects once pickled for worker processes keep their attributes in dictionaries from
+    then on, which slows a later one-process render of them by about 10%."""
     times = [[] for _ in worker_counts]
     for _ in range(repeats):
         for workers, counted in zip(worker_counts, times):
+            integrator = make()
             start = time.perf_counter()
             integrator.render(workers=workers, samples_per_pixel=samples_per_pixel,
                               progress=False)
@@ -192,7 +196,9 @@ def speed_table(size: int, repeats: int, workers: int, folder: Path) -> str:
     for number, (figure, name, scene, max_depth) in enumerate(jobs, 1):
         integrator = prepared(name, figure, scene, max_depth, size, folder)
         progress(f"[{number}/{len(jobs)}] {label(integrator)} on the {SCENE_NAMES[scene]}")
-        one, many = time_renders(integrator, [1, workers], repeats)
+        one, many = time_renders(
+            lambda: prepared(name, figure, scene, max_depth, size, folder), [1, workers],
+            repeats)
         rows.append([figure_label(figure), label(integrator), SCENE_NAMES[scene],
                      f"{one / pixels * 1e6:.2f}", f"{many / pixels * 1e6:.2f}",
                      f"{one / many:.2f}"])

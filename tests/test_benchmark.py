@@ -15,9 +15,20 @@ class RecordingIntegrator:
 
 def test_worker_counts_take_turns_so_drift_slows_them_alike():
     integrator = RecordingIntegrator()
-    medians = time_renders(integrator, [1, 2], repeats=3)
+    medians = time_renders(lambda: integrator, [1, 2], repeats=3)
     assert integrator.calls == [1, 2, 1, 2, 1, 2]
     assert len(medians) == 2 and all(m >= 0 for m in medians)
+
+
+def test_every_render_gets_an_integrator_of_its_own():
+    made = []
+
+    def make():
+        made.append(RecordingIntegrator())
+        return made[-1]
+
+    time_renders(make, [1, 2], repeats=2)
+    assert [integrator.calls for integrator in made] == [[1], [2], [1], [2]]
 
 
 def test_quick_run_writes_the_speed_table_and_the_accuracy_plot(tmp_path):
