@@ -105,11 +105,13 @@ class Integrator(ABC):
         image.fill(0.0)
         bar = tqdm(total=height * width, unit="px", unit_scale=True, disable=not progress,
                    desc=type(self).__name__, mininterval=0.5)
+        blocks = self._render_blocks(height, samples, workers)
         try:
-            for y0, rows in self._render_blocks(height, samples, workers):
+            for y0, rows in blocks:
                 image[y0:y0 + len(rows)] = rows
                 bar.update(rows.shape[0] * width)
         except KeyboardInterrupt:
+            blocks.close()  # stops the worker processes, wherever Ctrl+C struck
             bar.close()
             scene.save_image(filename + "_partial", tonemap=self.tonemap)
             print(f"\nInterrupted: the rows rendered so far are saved in "
@@ -253,7 +255,7 @@ class Integrator(ABC):
             for process, _ in workers:
                 process.join()
         for y0, y1 in list(unreported.values()):  # taken by a worker that stopped early
-            yield y0, self.render_rows(y0, y1, samples)
+            yield y0, renderer.render_rows(y0, y1, samples)
 
 
 # ------------------------------------------------------------------------------------------

@@ -14,6 +14,7 @@ import time
 
 import numpy as np
 import pytest
+from tqdm import tqdm
 
 from AppRenderer import cornell_box_scene, sphere_test_scene
 from benchmark import StudentPhongIntegrator
@@ -732,6 +733,18 @@ def test_ctrl_c_with_workers_keeps_the_rows_the_workers_finished(tmp_path):
     rendered = partial.any(axis=(1, 2))
     assert rendered.any() and not rendered.all()
     assert np.array_equal(partial[rendered], full[rendered])
+
+
+def test_ctrl_c_between_blocks_stops_the_worker_processes(tmp_path, monkeypatch):
+    def interrupted(bar, n=1):  # Ctrl+C while render() updates the progress bar
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(tqdm, "update", interrupted)
+    integrator = WorkerRendersFirst(str(tmp_path / "img"), tmp_path / "marker")
+    integrator.add_scene(small_cornell_box(128))
+    with pytest.raises(KeyboardInterrupt) as raised:  # its traceback keeps render's frame
+        integrator.render(workers=2, progress=False)
+    assert multiprocessing.active_children() == [], raised
 
 
 def test_unwritable_output_folder_fails_before_rendering(tmp_path):
