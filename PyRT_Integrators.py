@@ -199,7 +199,7 @@ class Integrator(ABC):
         blocks = _row_blocks(first, height, workers)
         payload = None
         if workers > 1 and len(blocks) > 1:
-            payload, reason = _worker_payload(self)
+            payload, renderer, reason = _worker_payload(self)
             if reason:
                 print(f"PyRT: rendering in one process: {reason}", file=sys.stderr)
         if payload is None:
@@ -207,10 +207,11 @@ class Integrator(ABC):
                 yield y0, self.render_rows(y0, y1, samples)
             return
         yield from self._render_with_workers(blocks, samples, min(workers, len(blocks)) - 1,
-                                             payload)
+                                             payload, renderer)
 
-    def _render_with_workers(self, blocks, samples, count, payload):
-        """Yields the blocks rendered by this process and by `count` worker processes.
+    def _render_with_workers(self, blocks, samples, count, payload, renderer):
+        """Yields the blocks rendered by this process, with renderer (a copy of this
+        integrator unpickled from payload), and by `count` worker processes.
 
         Every process takes the next block not yet taken (a counter in shared memory), so
         this process renders from the start and a worker that starts late simply takes
@@ -234,7 +235,6 @@ class Integrator(ABC):
         # This process renders with a copy too. Pickling the integrator made CPython store
         # the attributes of the originals in dictionaries, which makes every attribute read
         # slower (renders took 10% longer); the unpickled copy keeps the compact layout.
-        renderer = pickle.loads(payload)
         try:
             while (i := shared.take()) is not None:
                 y0, y1 = unreported.pop(i)
@@ -328,26 +328,28 @@ def _row_blocks(y0, y1, workers):
 
 
 def _worker_payload(integrator):
-    """(the pickled integrator for the worker processes, None), or (None, why they cannot
-    be used). The workers get the scene without its image, which they do not need."""
+    """(the pickled integrator for the worker processes, a copy unpickled from it, None),
+    or (None, None, why they cannot be used). The workers get the scene without its image,
+    which they do not need."""
     trace = sys.gettrace()
     tracer_module = getattr(trace, "__module__", None) or type(trace).__module__
     if "debugpy" in sys.modules or "pydevd" in sys.modules or (
             trace is not None and not tracer_module.startswith("coverage")):
-        return None, "a debugger is attached (so that breakpoints in compute_color work)"
+        return None, None, "a debugger is attached (so that breakpoints in compute_color work)"
     if multiprocessing.current_process().daemon:
-        return None, ("this process is itself a daemonic worker process (of a "
-                      "multiprocessing.Pool, say), which may not start processes")
+        return None, None, ("this process is itself a daemonic worker process (of a "
+                            "multiprocessing.Pool, say), which may not start processes")
     scene = copy.copy(integrator.scene)
     scene.rendered_image = None
     integrator = copy.copy(integrator)
     integrator.scene = scene
     try:
-        return pickle.dumps(integrator), None
+        payload = pickle.dumps(integrator)
+        return payload, pickle.loads(payload), None
     except Exception as error:  # pickle raises several types, all meaning the same here
-        return None, (f"the integrator or its scene cannot be sent to worker processes "
-                      f"({error}); attributes such as lambdas, open files or generators "
-                      "prevent it")
+        return None, None, (f"the integrator or its scene cannot be sent to worker processes "
+                            f"({type(error).__name__}: {error}); attributes such as lambdas, "
+                            "open files or generators prevent it")
 
 
 class _SharedImage:

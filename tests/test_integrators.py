@@ -417,6 +417,25 @@ def test_error_that_cannot_leave_a_worker_is_raised_as_its_text(tmp_path):
         integrator.render(workers=2, progress=False)
 
 
+class HoldsAnUnloadableValue(NormalIntegrator):
+    """Holds an exception that pickles but cannot be rebuilt from its pickle."""
+
+    def __init__(self, filename_):
+        super().__init__(filename_)
+        self.last_error = NeedsTwoArguments("kept", 1)
+
+
+def test_integrator_that_cannot_be_unpickled_renders_in_one_process_and_says_why(
+        tmp_path, capfd):
+    image = render_image(HoldsAnUnloadableValue(str(tmp_path / "odd")),
+                         sphere_test_scene(width=24, height=24), workers=2)
+    err = capfd.readouterr().err
+    assert "one process" in err and "NeedsTwoArguments" in err
+    expected = render_image(NormalIntegrator(str(tmp_path / "plain")),
+                            sphere_test_scene(width=24, height=24), workers=1)
+    assert np.array_equal(image, expected)
+
+
 # An integrator that exists only in the script that renders it, as students write them.
 # Its main process holds back its rendering until a worker process has rendered a block
 # or has stopped, as in a render that lasts longer than a worker takes to start.
