@@ -417,6 +417,13 @@ def test_error_that_cannot_leave_a_worker_is_raised_as_its_text(tmp_path):
         integrator.render(workers=2, progress=False)
 
 
+def normal_image_in_one_process(folder):
+    """The 24 x 24 Normal image of the sphere scene, rendered in this process: what a
+    render that falls back to one process must give."""
+    return render_image(NormalIntegrator(str(folder / "plain")),
+                        sphere_test_scene(width=24, height=24), workers=1)
+
+
 class HoldsAnUnloadableValue(NormalIntegrator):
     """Holds an exception that pickles but cannot be rebuilt from its pickle."""
 
@@ -431,9 +438,7 @@ def test_integrator_that_cannot_be_unpickled_renders_in_one_process_and_says_why
                          sphere_test_scene(width=24, height=24), workers=2)
     err = capfd.readouterr().err
     assert "one process" in err and "NeedsTwoArguments" in err
-    expected = render_image(NormalIntegrator(str(tmp_path / "plain")),
-                            sphere_test_scene(width=24, height=24), workers=1)
-    assert np.array_equal(image, expected)
+    assert np.array_equal(image, normal_image_in_one_process(tmp_path))
 
 
 # An integrator that exists only in the script that renders it, as students write them.
@@ -553,9 +558,7 @@ def test_with_a_debugger_attached_renders_in_one_process_and_says_why(tmp_path, 
         sys.settrace(None)
     err = capfd.readouterr().err
     assert "one process" in err and "debugger" in err
-    expected = render_image(NormalIntegrator(str(tmp_path / "plain")),
-                            sphere_test_scene(width=24, height=24), workers=1)
-    assert np.array_equal(image, expected)
+    assert np.array_equal(image, normal_image_in_one_process(tmp_path))
 
 
 def render_normal_with_two_workers(filename):
@@ -570,9 +573,7 @@ def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_pat
         image = pool.apply(render_normal_with_two_workers, (str(tmp_path / "pooled"),))
     err = capfd.readouterr().err
     assert "one process" in err and "daemonic" in err
-    expected = render_image(NormalIntegrator(str(tmp_path / "plain")),
-                            sphere_test_scene(width=24, height=24), workers=1)
-    assert np.array_equal(image, expected)
+    assert np.array_equal(image, normal_image_in_one_process(tmp_path))
 
 
 # ------------------------------------------------------------------------------------------
