@@ -610,21 +610,14 @@ def test_error_against_a_high_sample_reference_shrinks_with_more_samples(tmp_pat
     assert errors[3] < errors[0] / 4, errors
 
 
-@pytest.mark.parametrize("samples", [0, -1, 2.5, "4", True])
-def test_bad_samples_per_pixel_raises_value_error_naming_it(tmp_path, samples):
+@pytest.mark.parametrize("option, value", [
+    *[("samples_per_pixel", value) for value in (0, -1, 2.5, "4", True)],
+    *[("workers", value) for value in (0, -1, 2.5, "2", True)]])
+def test_bad_render_option_raises_value_error_naming_it(tmp_path, option, value):
     integrator = PhongIntegrator(str(tmp_path / "out" / "img"))
     integrator.add_scene(sphere_test_scene(width=4, height=4))
-    with pytest.raises(ValueError, match="samples_per_pixel"):
-        integrator.render(samples_per_pixel=samples, progress=False)
-    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
-
-
-@pytest.mark.parametrize("workers", [0, -1, 2.5, "2", True])
-def test_bad_workers_raises_value_error_naming_it(tmp_path, workers):
-    integrator = PhongIntegrator(str(tmp_path / "out" / "img"))
-    integrator.add_scene(sphere_test_scene(width=4, height=4))
-    with pytest.raises(ValueError, match="workers"):
-        integrator.render(workers=workers, progress=False)
+    with pytest.raises(ValueError, match=option):
+        integrator.render(progress=False, **{option: value})
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
 
 
