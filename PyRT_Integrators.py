@@ -232,9 +232,6 @@ class Integrator(ABC):
             sender.close()
             workers.append((process, receiver))
         running = list(workers)
-        # This process renders with a copy too. Pickling the integrator made CPython store
-        # the attributes of the originals in dictionaries, which makes every attribute read
-        # slower (renders took 10% longer); the unpickled copy keeps the compact layout.
         try:
             while (i := shared.take()) is not None:
                 y0, y1 = unreported.pop(i)
@@ -243,7 +240,6 @@ class Integrator(ABC):
             while unreported and running:  # all blocks are taken: wait for the last ones
                 yield from _reported(shared, unreported, running, timeout=0.1)
         except KeyboardInterrupt:
-            shared.stop()
             yield from _reported(shared, unreported, [], timeout=0)  # for the partial image
             raise
         finally:
@@ -330,7 +326,11 @@ def _row_blocks(y0, y1, workers):
 def _worker_payload(integrator):
     """(the pickled integrator for the worker processes, a copy unpickled from it, None),
     or (None, None, why they cannot be used). The workers get the scene without its image,
-    which they do not need."""
+    which they do not need.
+
+    The main process renders its share with the copy: pickling made CPython move the
+    attributes of the originals into dictionaries, where every read is slower (renders
+    took 10% longer); the unpickled copy keeps the compact layout."""
     trace = sys.gettrace()
     tracer_module = getattr(trace, "__module__", None) or type(trace).__module__
     if "debugpy" in sys.modules or "pydevd" in sys.modules or (
