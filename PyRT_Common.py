@@ -194,50 +194,32 @@ class RGBColor:
         return f"RGBColor({float(self.r)!r}, {float(self.g)!r}, {float(self.b)!r})"
 
 
-class _Constant:
-    """A shared value (BLACK, the origin, ...): assigning to its fields would change
-    it for everyone who uses it, so that raises an AttributeError instead."""
+# The shared colours, as the course has them: plain RGBColor objects. Code that changes one
+# in place (c = BLACK, then c.r += 1) changes it for every later use, so check_constants()
+# looks at them after every block of rows a render computes, and when an image is saved.
+BLACK = RGBColor(0.0, 0.0, 0.0)
+WHITE = RGBColor(1.0, 1.0, 1.0)
+GREEN = RGBColor(0.0, 1.0, 0.0)
+RED = RGBColor(1.0, 0.0, 0.0)
 
-    __slots__ = ()
+_CONSTANTS = {"BLACK": (BLACK, (0.0, 0.0, 0.0)), "WHITE": (WHITE, (1.0, 1.0, 1.0)),
+              "GREEN": (GREEN, (0.0, 1.0, 0.0)), "RED": (RED, (1.0, 0.0, 0.0))}
 
-    def __init__(self, *values):
-        for name, value in zip(self._fields, values):
-            object.__setattr__(self, name, value)
-
-    def _values(self):
-        return tuple(getattr(self, name) for name in self._fields)
-
-    def __setattr__(self, name, value):
-        raise AttributeError(
-            f"{self!r} is a shared constant and cannot be changed; make your own copy first, "
-            f"e.g. {type(self).__mro__[2].__name__}{self._values()}")
-
-    def __reduce__(self):
-        return (type(self), self._values())
+_NOT_SCALARS = frozenset((Vector3D, RGBColor))
 
 
-class _ConstantColor(_Constant, RGBColor):
-    __slots__ = ()
-    _fields = RGBColor.__slots__
-
-    def clamp(self, lo, hi):
-        if not (lo <= self.r <= hi and lo <= self.g <= hi and lo <= self.b <= hi):
-            self.r = None  # raises: a shared constant cannot be clamped in place
-
-
-class _ConstantVector(_Constant, Vector3D):
-    __slots__ = ()
-    _fields = Vector3D.__slots__
-
-
-BLACK = _ConstantColor(0.0, 0.0, 0.0)
-WHITE = _ConstantColor(1.0, 1.0, 1.0)
-GREEN = _ConstantColor(0.0, 1.0, 0.0)
-RED = _ConstantColor(1.0, 0.0, 0.0)
-
-_ZERO = _ConstantVector(0.0, 0.0, 0.0)  # the default point and normal of a HitData
-
-_NOT_SCALARS = frozenset((Vector3D, RGBColor, _ConstantColor, _ConstantVector))
+def check_constants(where):
+    """Raises a RuntimeError naming the shared colour (BLACK, WHITE, GREEN, RED) that was
+    changed in place, after giving it back its value; does nothing when all are intact."""
+    for name, (constant, value) in _CONSTANTS.items():
+        if (constant.r, constant.g, constant.b) != value:
+            changed = repr(constant)
+            constant.r, constant.g, constant.b = value
+            raise RuntimeError(
+                f"{where}: the shared colour {name} was changed in place to {changed}, so "
+                f"every later use of {name} was wrong. Code such as `color = {name}` followed "
+                f"by `color.r += ...` or `color.clamp(...)` does this; start from a copy "
+                f"instead: `color = RGBColor{value}`. {name} has its value back.")
 
 
 # ------------------------------------------------------------------------------------------
@@ -276,35 +258,19 @@ class HitData:
     ``hit_point`` (on the surface), its unit ``normal``, ``hit_distance`` (the distance
     travelled along the ray) and ``primitive_index`` (the object's index in
     ``scene.object_list``, set by ``closest_hit``).
-
-    Speed note: a hit found by PyRT's own primitives works out its point only when it is
-    first read (the depth and normal images never read it); reading and assigning it
-    works as for any attribute.
     """
 
-    __slots__ = ("has_hit", "_hit_point", "normal", "hit_distance", "primitive_index",
-                 "_surface")
+    __slots__ = ("has_hit", "hit_point", "normal", "hit_distance", "primitive_index")
 
-    # The default point and normal are one shared zero vector that cannot be changed, so
-    # sharing it is safe, and a miss costs one new object instead of three.
-    def __init__(self, has_hit=False, hit_point=_ZERO, normal=_ZERO, hit_distance=HUGEVALUE,
-                 primitive_index=-1, surface=None):
+    def __init__(self, has_hit=False, hit_point=None, normal=None, hit_distance=HUGEVALUE,
+                 primitive_index=-1):
+        # Defaults are fresh zero vectors, as for Ray: a shared one would leak one hit's
+        # changes into all.
         self.has_hit = has_hit
-        self._hit_point = hit_point
-        self.normal = normal
+        self.hit_point = Vector3D(0.0, 0.0, 0.0) if hit_point is None else hit_point
+        self.normal = Vector3D(0.0, 0.0, 0.0) if normal is None else normal
         self.hit_distance = hit_distance
         self.primitive_index = primitive_index
-        self._surface = surface  # (primitive, ray) to work out a hit_point given as None
-
-    @property
-    def hit_point(self):
-        if self._hit_point is None and self._surface is not None:
-            self._hit_point = self._surface[0]._surface_point(self)
-        return self._hit_point
-
-    @hit_point.setter
-    def hit_point(self, point):
-        self._hit_point = point
 
     def __repr__(self):
         if not self.has_hit:

@@ -6,8 +6,7 @@ distance as its normalised version.
 
 Speed note: ``Scene.closest_hit`` and ``Scene.any_hit`` run for every ray, so they talk to
 the primitives through ``_distance``, which takes the ray as plain floats and returns the
-distance or None; only the nearest hit is turned into a ``HitData`` (by ``_hit_data``), and
-its point only when it is read.
+distance or None; only the nearest hit is turned into a ``HitData`` (by ``_hit_data``).
 """
 import os
 import threading
@@ -16,7 +15,7 @@ from math import hypot, isfinite, tan
 from pathlib import Path
 
 from PyRT_Common import *
-from PyRT_Common import _ConstantVector, _restore_state
+from PyRT_Common import _restore_state, check_constants
 
 # ------------------------------------------------------------------------------------------
 # Robustness constants
@@ -211,6 +210,7 @@ class Scene:
         if image is None:
             raise RuntimeError("Scene.save_image: the scene has no image yet; call "
                                "scene.set_camera(camera) and render first")
+        check_constants("Scene.save_image")
         base = Path(full_filename)
         base.parent.mkdir(parents=True, exist_ok=True)
         # The linear files are written on a second thread meanwhile: the encoders, numpy's
@@ -318,10 +318,7 @@ class Primitive(ABC):
 
 
 class _FastPrimitive(Primitive):
-    """A built-in primitive: intersect() is the public face of _distance and _hit_data.
-
-    Its HitData leaves the point for _surface_point to work out when it is first read
-    (see HitData), from the primitive and ray kept in its _surface."""
+    """A built-in primitive: intersect() is the public face of _distance and _hit_data."""
 
     def intersect(self, ray):
         o, (dx, dy, dz) = ray.o, _unit(ray.d)
@@ -329,12 +326,6 @@ class _FastPrimitive(Primitive):
         if t is None:
             return HitData()
         return self._hit_data(o.x, o.y, o.z, dx, dy, dz, t)
-
-    def _surface_point(self, hit):
-        """The point o + d t of the hit."""
-        _, ox, oy, oz, dx, dy, dz = hit._surface
-        t = hit.hit_distance
-        return Vector3D(ox + dx * t, oy + dy * t, oz + dz * t)
 
 
 class Sphere(_FastPrimitive):
@@ -391,17 +382,13 @@ class Sphere(_FastPrimitive):
         vx, vy, vz = ox + dx * t - cx, oy + dy * t - cy, oz + dz * t - cz
         try:
             inv = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
-            normal = Vector3D(vx * inv, vy * inv, vz * inv)
+            nx, ny, nz = vx * inv, vy * inv, vz * inv
         except ZeroDivisionError:  # a sphere far below the precision of its position
-            normal = Vector3D(-dx, -dy, -dz)
-        return HitData(True, None, normal, t, -1, (self, ox, oy, oz, dx, dy, dz))
-
-    def _surface_point(self, hit):
+            nx, ny, nz = -dx, -dy, -dz
         # Rounding leaves o + d*t slightly off the surface; the point along the normal at
         # exactly one radius from the centre is on it.
-        cx, cy, cz, r2, r = self._k
-        n = hit.normal
-        return Vector3D(cx + n.x * r, cy + n.y * r, cz + n.z * r)
+        return HitData(True, Vector3D(cx + nx * r, cy + ny * r, cz + nz * r),
+                       Vector3D(nx, ny, nz), t)
 
 
 class InfinitePlane(_FastPrimitive):
@@ -423,7 +410,6 @@ class InfinitePlane(_FastPrimitive):
         self._normal = Normalize(_check_nonzero("InfinitePlane", "plane_normal", self._normal))
         n, p = self._normal, self._origin
         self._k = (n.x, n.y, n.z, Dot(p, n))
-        self._hit_normal = _ConstantVector(n.x, n.y, n.z)  # see _hit_data
 
     def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
         nx, ny, nz, pn = self._k
@@ -435,9 +421,9 @@ class InfinitePlane(_FastPrimitive):
         return t if t_min <= t <= t_max and t != INFINITY else None
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
-        # Every hit of a plane shares one normal vector, which cannot be changed (a
-        # shared constant, like BLACK): that saves creating one per hit.
-        return HitData(True, None, self._hit_normal, t, -1, (self, ox, oy, oz, dx, dy, dz))
+        nx, ny, nz, _ = self._k
+        return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
+                       Vector3D(nx, ny, nz), t)
 
 
 class Parallelogram(_FastPrimitive):
@@ -471,7 +457,6 @@ class Parallelogram(_FastPrimitive):
         ua, ub = Cross(s2, m) / mm, Cross(m, s1) / mm
         self._k = (n.x, n.y, n.z, Dot(p, n))
         self._k2 = (p.x, p.y, p.z, ua.x, ua.y, ua.z, ub.x, ub.y, ub.z)
-        self._faces = (_ConstantVector(n.x, n.y, n.z), _ConstantVector(-n.x, -n.y, -n.z))
 
     def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
         nx, ny, nz, pn = self._k
@@ -493,9 +478,10 @@ class Parallelogram(_FastPrimitive):
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
         nx, ny, nz, _ = self._k
-        front, back = self._faces  # shared, unchangeable normals, as for InfinitePlane
-        return HitData(True, None, back if dx * nx + dy * ny + dz * nz > 0.0 else front, t,
-                       -1, (self, ox, oy, oz, dx, dy, dz))
+        if dx * nx + dy * ny + dz * nz > 0.0:  # the ray comes from behind: face it
+            nx, ny, nz = -nx, -ny, -nz
+        return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
+                       Vector3D(nx, ny, nz), t)
 
 
 # ------------------------------------------------------------------------------------------

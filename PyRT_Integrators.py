@@ -21,7 +21,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from PyRT_Common import *
-from PyRT_Common import __all__ as _common_names, _ConstantVector, _restore_state
+from PyRT_Common import __all__ as _common_names, _restore_state, check_constants
 
 __all__ = _common_names + [
     "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
@@ -29,9 +29,6 @@ __all__ = _common_names + [
 ]
 
 INFINITY = float("inf")
-# The camera sits at the origin. All camera rays share this one unchangeable vector as their
-# origin, which saves creating one per pixel.
-CAMERA_ORIGIN = _ConstantVector(0.0, 0.0, 0.0)
 # A shadow ray stops this fraction short of its light, so a light lying exactly on a
 # surface is not hidden by that surface.
 SHADOW_EPSILON = 1e-6
@@ -124,6 +121,7 @@ class Integrator(ABC):
     def render_rows(self, y0, y1, samples_per_pixel=1):
         """Rows y0 .. y1-1 of the image as an array of shape (y1 - y0, width, 3)."""
         rows = [self.row_colors(y, samples_per_pixel) for y in range(y0, y1)]
+        check_constants(f"{type(self).__name__}.render")
         try:
             return np.array(rows, dtype=float).reshape(y1 - y0, -1, 3)
         except (TypeError, ValueError):
@@ -141,7 +139,7 @@ class Integrator(ABC):
         row = []
         if samples_per_pixel == 1:
             for direction in camera.row_directions(y):
-                color = compute_color(Ray(CAMERA_ORIGIN, direction, INFINITY, 0.0))
+                color = compute_color(Ray(Vector3D(0.0, 0.0, 0.0), direction, INFINITY, 0.0))
                 try:
                     row += (color.r, color.g, color.b)
                 except AttributeError:
@@ -150,8 +148,8 @@ class Integrator(ABC):
         for x, offsets in enumerate(_pixel_offsets(samples_per_pixel, y, camera.width)):
             r = g = b = 0.0
             for u, v in offsets:
-                color = compute_color(Ray(CAMERA_ORIGIN, camera.get_direction(x, y, u, v),
-                                          INFINITY, 0.0))
+                direction = camera.get_direction(x, y, u, v)
+                color = compute_color(Ray(Vector3D(0.0, 0.0, 0.0), direction, INFINITY, 0.0))
                 try:
                     r += color.r
                     g += color.g

@@ -11,7 +11,7 @@ import pytest
 import PyRT_Common
 from PyRT_Common import (BLACK, EPSILON, GREEN, HUGEVALUE, RED, WHITE, Cross, Dot,
                          EnvironmentMap, HitData, Length, Normalize, Ray, RGBColor, Vector3D,
-                         orient_normal)
+                         check_constants, orient_normal)
 
 
 def as_tuple(v):
@@ -175,33 +175,49 @@ def test_clamp_works_in_place():
     assert rgb(c) == (0.0, 0.5, 1.0)
 
 
-@pytest.mark.parametrize("constant, expected", [
-    (BLACK, (0.0, 0.0, 0.0)), (WHITE, (1.0, 1.0, 1.0)),
-    (GREEN, (0.0, 1.0, 0.0)), (RED, (1.0, 0.0, 0.0)),
-])
-def test_colour_constants_have_their_values(constant, expected):
-    assert isinstance(constant, RGBColor)
+COLOUR_CONSTANTS = [("BLACK", BLACK, (0.0, 0.0, 0.0)), ("WHITE", WHITE, (1.0, 1.0, 1.0)),
+                    ("GREEN", GREEN, (0.0, 1.0, 0.0)), ("RED", RED, (1.0, 0.0, 0.0))]
+
+
+@pytest.mark.parametrize("name, constant, expected", COLOUR_CONSTANTS)
+def test_colour_constants_are_plain_course_colours_with_their_values(name, constant, expected):
+    # Student code checks `type(c) == RGBColor` and compares with `==`.
+    assert type(constant) == RGBColor
+    assert rgb(constant) == expected
+    assert constant == RGBColor(*expected)
+
+
+def test_intact_constants_pass_the_check():
+    check_constants("here")  # raises nothing
+    assert [rgb(c) for _, c, _ in COLOUR_CONSTANTS] == [e for _, _, e in COLOUR_CONSTANTS]
+
+
+@pytest.mark.parametrize("name, constant, expected", COLOUR_CONSTANTS)
+@pytest.mark.parametrize("channel", ["r", "g", "b"])
+def test_a_constant_changed_in_place_is_reported_with_the_fix_and_restored(
+        name, constant, expected, channel):
+    color = constant  # what a student writes before `color.r += 0.5`
+    setattr(color, channel, getattr(color, channel) + 0.5)
+    with pytest.raises(RuntimeError) as error:
+        check_constants("Scene.save_image")
+    message = str(error.value)
+    assert message.startswith("Scene.save_image: ")
+    assert f"shared colour {name} was changed" in message
+    assert f"color = RGBColor{expected}" in message  # what to write instead
     assert rgb(constant) == expected
 
 
-@pytest.mark.parametrize("constant", [BLACK, WHITE, GREEN, RED])
-@pytest.mark.parametrize("channel", ["r", "g", "b"])
-def test_colour_constants_cannot_be_mutated(constant, channel):
-    before = rgb(constant)
-    with pytest.raises(AttributeError):
-        setattr(constant, channel, 0.5)
-    assert rgb(constant) == before
-
-
-def test_clamping_black_to_the_unit_range_is_allowed():
+def test_clamping_black_to_the_unit_range_changes_nothing():
     BLACK.clamp(0, 1)
     assert rgb(BLACK) == (0.0, 0.0, 0.0)
+    check_constants("here")
 
 
-def test_clamping_a_constant_that_would_change_raises():
-    with pytest.raises(AttributeError):
-        WHITE.clamp(0.0, 0.5)
-    assert rgb(WHITE) == (1.0, 1.0, 1.0)
+def test_clamping_a_constant_in_place_is_reported():
+    WHITE.clamp(0.0, 0.5)  # WHITE becomes (0.5, 0.5, 0.5) ...
+    with pytest.raises(RuntimeError, match="WHITE"):
+        check_constants("here")
+    assert rgb(WHITE) == (1.0, 1.0, 1.0)  # ... and gets its value back
 
 
 def test_arithmetic_on_a_constant_gives_a_mutable_colour():
@@ -262,6 +278,7 @@ def test_get_hitpoint_is_origin_plus_direction_times_t():
 def test_hitdata_defaults():
     hit = HitData()
     assert hit.has_hit is False
+    assert type(hit.hit_point) == Vector3D and type(hit.normal) == Vector3D
     assert as_tuple(hit.hit_point) == (0.0, 0.0, 0.0)
     assert as_tuple(hit.normal) == (0.0, 0.0, 0.0)
     assert hit.hit_distance == HUGEVALUE
@@ -270,13 +287,14 @@ def test_hitdata_defaults():
 
 def test_changing_one_hitdata_default_vector_never_leaks_into_another():
     first, second = HitData(), HitData()
-    for vector, channel in ((first.hit_point, "x"), (first.normal, "z")):
-        try:
-            setattr(vector, channel, 3.0)  # either allowed on a fresh vector or refused
-        except AttributeError:
-            pass
+    first.hit_point.x = 1.0
+    first.normal.z = 3.0
+    assert as_tuple(first.hit_point) == (1.0, 0.0, 0.0)
+    assert as_tuple(first.normal) == (0.0, 0.0, 3.0)
     assert as_tuple(second.hit_point) == (0.0, 0.0, 0.0)
     assert as_tuple(second.normal) == (0.0, 0.0, 0.0)
+    assert as_tuple(HitData().hit_point) == (0.0, 0.0, 0.0)
+    assert first.hit_point is not first.normal
 
 
 def test_hitdata_keeps_its_arguments():

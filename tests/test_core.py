@@ -1,5 +1,4 @@
 """Unit tests for PyRT_Core, against values computed by hand."""
-import copy
 import math
 import os
 import stat
@@ -10,7 +9,7 @@ import numpy as np
 import pytest
 
 import PyRT_Core
-from PyRT_Common import RGBColor, Ray, Vector3D
+from PyRT_Common import BLACK, RGBColor, Ray, Vector3D
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight,
                        Primitive, Scene, Sphere)
 
@@ -334,6 +333,7 @@ def test_lambertian_kd_is_colour_over_pi():
 def test_lambertian_value_is_kd_times_cosine(wi, cosine):
     brdf = Lambertian(RGBColor(0.5, 0.25, 1.0))
     value = brdf.get_value(Vector3D(*wi), Vector3D(0.0, 0.0, 1.0), Vector3D(0.0, 0.0, 1.0))
+    assert type(value) == RGBColor
     assert rgb(value) == pytest.approx(
         (0.5 / math.pi * cosine, 0.25 / math.pi * cosine, cosine / math.pi), rel=1e-12)
 
@@ -342,7 +342,8 @@ def test_lambertian_value_is_kd_times_cosine(wi, cosine):
 def test_lambertian_value_is_black_when_light_is_not_above(wi):
     brdf = Lambertian(RGBColor(0.5, 0.25, 1.0))
     value = brdf.get_value(Vector3D(*wi), Vector3D(0.0, 0.0, 1.0), Vector3D(0.0, 0.0, 1.0))
-    assert rgb(value) == (0.0, 0.0, 0.0)
+    assert type(value) == RGBColor
+    assert value == BLACK and rgb(value) == (0.0, 0.0, 0.0)
 
 
 def test_point_light_attributes():
@@ -446,17 +447,45 @@ def test_a_miss_is_a_new_hitdata_whose_fields_students_may_assign():
     assert scene.closest_hit(ray((0, 0, 0), (0, 1, 0))).primitive_index == -1
 
 
-def test_hit_point_left_for_later_is_worked_out_once_and_can_be_assigned():
-    scene = overlapping(("far", "near"))
-    hit = scene.closest_hit(ray((0, 0, 0), (0, 0, -1)))
-    first = hit.hit_point
-    assert (first.x, first.y, first.z) == (0.0, 0.0, -4.0)  # the near sphere, at z = -5 + 1
-    assert first is hit.hit_point  # worked out on the first read, then kept
-    copied = copy.deepcopy(hit)
-    assert (copied.hit_point.x, copied.hit_point.y, copied.hit_point.z) == (
-        first.x, first.y, first.z)
-    hit.hit_point = Vector3D(1.0, 2.0, 3.0)
-    assert (hit.hit_point.x, hit.hit_point.y, hit.hit_point.z) == (1.0, 2.0, 3.0)
+# Each primitive seen by the ray (0, 0, 0) -> (0, 0, -1) at (0, 0, -4) with normal (0, 0, 1).
+FACING_THE_CAMERA = {
+    "sphere": lambda: Sphere(Vector3D(0.0, 0.0, -5.0), 1.0),
+    "plane": lambda: InfinitePlane(Vector3D(0.0, 0.0, -4.0), Vector3D(0.0, 0.0, 1.0)),
+    "parallelogram": lambda: Parallelogram(Vector3D(-1.0, -1.0, -4.0), Vector3D(2.0, 0.0, 0.0),
+                                           Vector3D(0.0, 2.0, 0.0)),
+}
+
+
+def hits_of(obj):
+    """The hit of the ray down -z as intersect() and as closest_hit() return it."""
+    scene = Scene()
+    scene.add_object(obj)
+    return [obj.intersect(ray((0, 0, 0), (0, 0, -1))),
+            scene.closest_hit(ray((0, 0, 0), (0, 0, -1)))]
+
+
+@pytest.mark.parametrize("kind", FACING_THE_CAMERA)
+def test_hits_hold_plain_course_vectors(kind):
+    # Real student code branches on `type(hit.normal) == Vector3D`.
+    for hit in hits_of(FACING_THE_CAMERA[kind]()):
+        assert type(hit.normal) == Vector3D and type(hit.hit_point) == Vector3D
+        assert isinstance(hit.normal, Vector3D)
+        assert_hit(hit, (0.0, 0.0, -4.0), (0.0, 0.0, 1.0), 4.0)
+
+
+@pytest.mark.parametrize("kind", FACING_THE_CAMERA)
+def test_changing_a_returned_hit_changes_neither_the_scene_nor_another_hit(kind):
+    obj = FACING_THE_CAMERA[kind]()
+    first, second = hits_of(obj)
+    assert first.normal is not second.normal and first.hit_point is not second.hit_point
+    for hit in (first, second):
+        hit.normal.x, hit.normal.z = 5.0, -1.0  # mutated, as students do
+        hit.hit_point.y = 7.0
+    assert as_tuple(second.normal) == (5.0, 0.0, -1.0)
+    for later in hits_of(obj):
+        assert_hit(later, (0.0, 0.0, -4.0), (0.0, 0.0, 1.0), 4.0)
+    if kind != "sphere":
+        assert as_tuple(obj.normal) == (0.0, 0.0, 1.0)
 
 
 def test_closest_hit_on_empty_scene_is_a_miss():

@@ -348,6 +348,95 @@ def test_student_render_loop_saves_what_the_built_in_render_saves(tmp_path):
     assert (tmp_path / "student_Phong.png").is_file()
 
 
+class TypeCheckingNormal(Integrator):
+    """The Normal integrator as a real student solution writes it: it checks the type of the
+    normal and otherwise treats it as a numpy array."""
+
+    def __init__(self, filename_):
+        super().__init__(filename_ + "_Normal")
+
+    def compute_color(self, ray):
+        hit = self.scene.closest_hit(ray)
+        if hit.has_hit == False:  # noqa: E712 (as written)
+            return BLACK
+        if type(hit.normal) == Vector3D:
+            n = np.array([hit.normal.x, hit.normal.y, hit.normal.z])
+        else:
+            n = hit.normal
+        c = (n + 1) / 2
+        return RGBColor(c[0], c[1], c[2])
+
+
+def test_student_code_that_checks_the_normal_type_gives_the_normal_image(tmp_path):
+    student = render_image(TypeCheckingNormal(str(tmp_path / "student")),
+                           small_cornell_box(24), workers=1)
+    built_in = render_image(NormalIntegrator(str(tmp_path / "built_in")),
+                            small_cornell_box(24), workers=1)
+    assert np.array_equal(student, built_in)
+
+
+class RayInspector(Integrator):
+    """Records the types of the ray's vectors, then moves the ray's origin in place, as a
+    student building a secondary ray might."""
+
+    def __init__(self, filename_):
+        super().__init__(filename_)
+        self.seen = set()
+
+    def compute_color(self, ray):
+        self.seen.add((type(ray.o), type(ray.d), (ray.o.x, ray.o.y, ray.o.z)))
+        ray.o.x += 1.0
+        return BLACK
+
+
+def test_every_camera_ray_has_plain_vectors_and_an_origin_of_its_own(tmp_path):
+    integrator = RayInspector(str(tmp_path / "img"))
+    render_image(integrator, fov90_scene(4, 3), workers=1)
+    assert integrator.seen == {(Vector3D, Vector3D, (0.0, 0.0, 0.0))}
+
+
+@pytest.mark.parametrize("name", ["lazy", "intersection", "depth", "normal", "phong"])
+def test_colours_the_integrators_return_are_plain_rgbcolors(tmp_path, name):
+    integrator = {"lazy": LazyIntegrator, "intersection": IntersectionIntegrator,
+                  "depth": DepthIntegrator, "normal": NormalIntegrator,
+                  "phong": PhongIntegrator}[name](str(tmp_path / "img"))
+    integrator.add_scene(sphere_test_scene(width=8, height=8))
+    for direction in (Vector3D(0.0, 0.0, -1.0), Vector3D(0.0, 1.0, 0.0)):  # a hit, a miss
+        color = integrator.compute_color(Ray(Vector3D(0.0, 0.0, 0.0), direction))
+        assert type(color) == RGBColor
+
+
+class ChangesBlackInPlace(NormalIntegrator):
+    """Brightens misses by changing BLACK itself: `color = BLACK; color.r += 0.5`."""
+
+    def compute_color(self, ray):
+        color = super().compute_color(ray)
+        if color == BLACK:
+            color.r += 0.5
+        return color
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_changing_black_in_place_stops_the_render_with_the_fix(tmp_path, workers):
+    integrator = ChangesBlackInPlace(str(tmp_path / "img"))
+    integrator.add_scene(sphere_test_scene(width=16, height=16))
+    with pytest.raises(RuntimeError, match=r"BLACK was changed in place") as error:
+        integrator.render(workers=workers, progress=False)
+    assert "color = RGBColor(0.0, 0.0, 0.0)" in str(error.value)
+    assert (BLACK.r, BLACK.g, BLACK.b) == (0.0, 0.0, 0.0)
+    assert not (tmp_path / "img_Normal.png").exists()
+
+
+def test_an_own_render_loop_that_changed_a_constant_is_told_when_it_saves(tmp_path):
+    scene = fov90_scene(2, 2)
+    red = RED
+    red.g = 1.0  # RED is now yellow, for every later use
+    scene.set_pixel(red, 0, 0)
+    with pytest.raises(RuntimeError, match="Scene.save_image: the shared colour RED"):
+        scene.save_image(str(tmp_path / "img"))
+    assert (RED.r, RED.g, RED.b) == (1.0, 0.0, 0.0)
+
+
 # ------------------------------------------------------------------------------------------
 # Parallel rendering
 # ------------------------------------------------------------------------------------------
