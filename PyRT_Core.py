@@ -332,11 +332,13 @@ class Sphere(_FastPrimitive):
     """The sphere |p - origin| = radius; its normal (p - origin)/radius points outward, also
     for rays that start inside.
 
-    Intersection, with f = o - origin and unit d, solves t^2 + 2bt + c = 0 for b = f.d and
-    c = f.f - r^2. The textbook discriminant b^2 - c cancels catastrophically when the sphere
-    is far away compared with its radius, so it is computed as r^2 - |f - b d|^2, and the
-    two roots as q = -b - sign(b) sqrt(disc) and c / q, which never subtracts nearly equal
-    numbers (Ray Tracing Gems, chapter 7)."""
+    Intersection works in units of the radius r, so that no square over- or underflows at
+    any scale: with f = (o - origin)/r and unit d it solves t'^2 + 2bt' + c = 0 for b = f.d
+    and c = |f|^2 - 1, and the distance is t = r t'. The textbook discriminant b^2 - c
+    cancels catastrophically when the sphere is far away compared with its radius, so it is
+    computed as 1 - |f - b d|^2, and the two roots as q = -b - sign(b) sqrt(disc) and c / q,
+    which never subtracts nearly equal numbers (Ray Tracing Gems, chapter 7). c / q is worked
+    out as (|f| - 1) ((|f| + 1) / q), which cannot overflow however far away the sphere is."""
 
     origin = _Shape()
     radius = _Shape()
@@ -352,25 +354,26 @@ class Sphere(_FastPrimitive):
         self._radius = _check_positive("Sphere", "sphere_radius", self._radius)
         self.radius_squared = self._radius * self._radius
         c = self._origin
-        self._k = (c.x, c.y, c.z, self.radius_squared, self._radius)
+        self._k = (c.x, c.y, c.z, self._radius)
 
     def _distance(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
-        cx, cy, cz, r2, r = self._k
-        fx, fy, fz = ox - cx, oy - cy, oz - cz
+        cx, cy, cz, r = self._k
+        fx, fy, fz = (ox - cx) / r, (oy - cy) / r, (oz - cz) / r
         b = fx * dx + fy * dy + fz * dz
         lx, ly, lz = fx - b * dx, fy - b * dy, fz - b * dz
-        disc = r2 - (lx * lx + ly * ly + lz * lz)
+        disc = 1.0 - (lx * lx + ly * ly + lz * lz)
         if disc < 0.0:
             return None
+        f = hypot(fx, fy, fz)
         if b > 0.0:    # q = -(b + sqrt(disc)) is the near root
             q = -b - sqrt(disc)
-            t0, t1 = q, (fx * fx + fy * fy + fz * fz - r2) / q
+            t0, t1 = q * r, (f - 1.0) * ((f + 1.0) / q) * r
         else:          # q = sqrt(disc) - b = |b| + sqrt(disc) is the far root
             q = sqrt(disc) - b
             if q == 0.0:  # b == disc == 0: the ray starts on the sphere, touching it
                 t0 = t1 = 0.0
             else:
-                t0, t1 = (fx * fx + fy * fy + fz * fz - r2) / q, q
+                t0, t1 = (f - 1.0) * ((f + 1.0) / q) * r, q * r
         if t_min <= t0 <= t_max:
             return t0
         if t_min <= t1 <= t_max:
@@ -378,13 +381,14 @@ class Sphere(_FastPrimitive):
         return None
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
-        cx, cy, cz, r2, r = self._k
-        vx, vy, vz = ox + dx * t - cx, oy + dy * t - cy, oz + dz * t - cz
-        try:
-            inv = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
-            nx, ny, nz = vx * inv, vy * inv, vz * inv
-        except ZeroDivisionError:  # a sphere far below the precision of its position
+        cx, cy, cz, r = self._k
+        # (p - origin)/r, unit length to within rounding (and free of over- and underflow)
+        vx, vy, vz = (ox + dx * t - cx) / r, (oy + dy * t - cy) / r, (oz + dz * t - cz) / r
+        length = sqrt(vx * vx + vy * vy + vz * vz)
+        if length == 0.0:  # a sphere far below the precision of its position
             nx, ny, nz = -dx, -dy, -dz
+        else:
+            nx, ny, nz = vx / length, vy / length, vz / length
         # Rounding leaves o + d*t slightly off the surface; the point along the normal at
         # exactly one radius from the centre is on it.
         return HitData(True, Vector3D(cx + nx * r, cy + ny * r, cz + nz * r),
@@ -446,15 +450,20 @@ class Parallelogram(_FastPrimitive):
         p = self._point = _check_vector("Parallelogram", "point", self._point)
         s1 = self._s1 = _check_nonzero("Parallelogram", "s1", self._s1)
         s2 = self._s2 = _check_nonzero("Parallelogram", "s2", self._s2)
-        m = Cross(s1, s2)
-        mm = Dot(m, m)
-        # Parallel sides span no area: sin(angle)^2 = |s1 x s2|^2 / (|s1|^2 |s2|^2) ~ 0.
-        if mm <= 1e-24 * Dot(s1, s1) * Dot(s2, s2):
+        # Everything is worked out from the unit sides e1, e2 and their lengths l1, l2, so no
+        # product over- or underflows at any scale (s1 x s2 is the product of two lengths,
+        # its square of four). With c = e1 x e2 (|c| = sin of the angle between the sides)
+        # the coordinates above are a = q.(e2 x c)/(c.c l1) and b = q.(c x e1)/(c.c l2).
+        l1, l2 = Length(s1), Length(s2)
+        e1, e2 = s1 / l1, s2 / l2
+        c = Cross(e1, e2)
+        cc = Dot(c, c)
+        if cc <= 1e-24:  # sin(angle) <= 1e-12: parallel sides span no area
             raise ValueError(f"Parallelogram: s1 {s1!r} and s2 {s2!r} are parallel, so they "
                              "span no area; give two sides that point in different directions")
-        self.normal = Normalize(m)
+        self.normal = Normalize(c)
         n = self.normal
-        ua, ub = Cross(s2, m) / mm, Cross(m, s1) / mm
+        ua, ub = Cross(e2, c) / cc / l1, Cross(c, e1) / cc / l2
         self._k = (n.x, n.y, n.z, Dot(p, n))
         self._k2 = (p.x, p.y, p.z, ua.x, ua.y, ua.z, ub.x, ub.y, ub.z)
 

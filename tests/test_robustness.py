@@ -5,7 +5,7 @@ import sys
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from AppRenderer import cornell_box_scene, sphere_test_scene
@@ -230,6 +230,105 @@ def test_non_unit_direction_gives_the_same_hit(case, factor):
 
 
 # ------------------------------------------------------------------------------------------
+# Property-based: the whole range of double precision
+# ------------------------------------------------------------------------------------------
+def scaled_primitive(obj, s):
+    """The primitive with every position and length times s."""
+    if isinstance(obj, Sphere):
+        return Sphere(obj.origin * s, obj.radius * s)
+    return Parallelogram(obj.point * s, obj.s1 * s, obj.s2 * s)
+
+
+def scaled_ray(ray, s):
+    return make_ray(ray.o * s, ray.d, ray.t_max * s, ray.t_min * s)
+
+
+# 2**-498 ~ 1.2e-150 to 2**498 ~ 8.2e149: multiplying by a power of two changes only the
+# exponents, so a test free of over- and underflow gives exactly the scaled answer.
+powers_of_two = st.integers(-498, 498).map(lambda k: 2.0 ** k)
+
+
+def no_tiny_components(*vectors):
+    """True when every component is 0 or at least 1e-100 in size: scaled by 2**-498, such a
+    component stays a normal double. (A direction like (0, 1, 1e-272) has components whose
+    products underflow at any scale; that is not what scaling tests.)"""
+    return all(c == 0.0 or abs(c) >= 1e-100 for v in vectors for c in as_tuple(v))
+
+
+@PROPERTY
+@given(aimed_rays, powers_of_two)
+def test_hits_scaled_by_a_power_of_two_are_exactly_the_scaled_hits(case, s):
+    obj, ray = case
+    expected = obj.intersect(ray)
+    assume(no_tiny_components(ray.o, ray.d, expected.hit_point, expected.normal))
+    scene = Scene()
+    scene.add_object(scaled_primitive(obj, s))
+    for hit in (scene.object_list[0].intersect(scaled_ray(ray, s)),
+                scene.closest_hit(scaled_ray(ray, s))):
+        assert hit.has_hit
+        assert hit.hit_distance == expected.hit_distance * s
+        assert as_tuple(hit.hit_point) == as_tuple(expected.hit_point * s)
+        assert as_tuple(hit.normal) == as_tuple(expected.normal)
+
+
+@PROPERTY
+@given(aimed_rays, st.floats(-150.0, 150.0))
+def test_hits_at_any_scale_from_1e_minus_150_to_1e150_are_the_scaled_hits(case, exponent):
+    obj, ray = case
+    s = 10.0 ** exponent
+    expected = obj.intersect(ray)
+    hit = scaled_primitive(obj, s).intersect(scaled_ray(ray, s))
+    assert hit.has_hit
+    # the inputs are rounded once when scaled: the answers agree to a few ulps of the scene
+    scale = magnitude(ray.o, expected.hit_point) + expected.hit_distance
+    assert hit.hit_distance / s == pytest.approx(expected.hit_distance, abs=1e-12 * scale)
+    assert distance(hit.hit_point / s, expected.hit_point) <= 1e-12 * scale
+    assert distance(hit.normal, expected.normal) <= 1e-9
+
+
+@pytest.mark.parametrize("s", [1e-300, 1e-150, 1e150, 1e300])
+def test_parallel_sides_are_refused_and_others_accepted_at_any_scale(s):
+    with pytest.raises(ValueError, match="parallel"):
+        Parallelogram(GOOD * s, Vector3D(1.0, 2.0, 3.0) * s, Vector3D(-2.0, -4.0, -6.0) * s)
+    # sides 1e-12 radians apart are parallel as far as a double can tell, at every scale ...
+    with pytest.raises(ValueError, match="parallel"):
+        Parallelogram(GOOD * s, Vector3D(1.0, 0.0, 0.0) * s, Vector3D(1.0, 1e-13, 0.0) * s)
+    # ... while a skewed, thin parallelogram of any size is a parallelogram
+    thin = Parallelogram(Vector3D(0.0, 0.0, -1.0) * s, Vector3D(1.0, 0.0, 0.0) * s,
+                         Vector3D(1.0, 1e-6, 0.0) * s)
+    assert as_tuple(thin.normal) == (0.0, 0.0, 1.0)
+
+
+@pytest.mark.parametrize("tiny", [1e-300, 5e-324])
+def test_tiny_non_zero_vectors_are_sides_and_normals_not_zero_vectors(tiny):
+    square = Parallelogram(Vector3D(0.0, 0.0, -tiny), Vector3D(tiny, 0.0, 0.0),
+                           Vector3D(0.0, tiny, 0.0))
+    assert as_tuple(square.normal) == (0.0, 0.0, 1.0)
+    plane = InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, -tiny, 0.0))
+    assert as_tuple(plane.normal) == (0.0, -1.0, 0.0)
+
+
+@pytest.mark.parametrize("s", [1e-300, 1e-150, 1e150, 1e300])
+def test_spheres_of_any_size_are_hit_at_the_scaled_distance(s):
+    # radius s, centre 3s down -z: the ray down -z enters at 2s, normal (0, 0, 1)
+    hit = Sphere(Vector3D(0.0, 0.0, -3.0 * s), s).intersect(
+        make_ray(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 0.0, -1.0), INF))
+    assert hit.has_hit
+    assert hit.hit_distance == pytest.approx(2.0 * s, rel=1e-15)
+    assert as_tuple(hit.normal) == (0.0, 0.0, 1.0)
+
+
+def test_sphere_1e160_radii_away_is_hit_where_its_square_would_overflow():
+    # |f|^2 = 1e320 overflows; (|f| - 1)(|f| + 1) does not: the near side is 1e160 - 1 away,
+    # which rounds to 1e160
+    hit = Sphere(Vector3D(0.0, 0.0, -1e160), 1.0).intersect(
+        make_ray(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 0.0, -1.0), INF))
+    assert hit.has_hit
+    assert hit.hit_distance == 1e160
+    assert as_tuple(hit.normal) == (0.0, 0.0, 1.0)
+
+
+# ------------------------------------------------------------------------------------------
 # Specific numerical cases
 # ------------------------------------------------------------------------------------------
 def test_unit_sphere_1e8_away_is_hit_head_on():
@@ -398,11 +497,21 @@ def test_points_where_a_wall_meets_the_ceiling_are_lit(cornell_references, k, si
 
 
 @pytest.mark.parametrize("name", INTEGRATORS)
-@pytest.mark.parametrize("s", [1e-6, 1e-3, 1e3, 1e6])
+@pytest.mark.parametrize("s", [1e-150, 1e-100, 1e-6, 1e-3, 1e3, 1e6, 1e100, 1e150])
 def test_scaled_cornell_box_renders_the_same_image(cornell_references, tmp_path, name, s):
     image = render(INTEGRATORS[name](str(tmp_path / name), s),
                    scaled_copy(cornell_box_scene(0.75, 2), s))
     np.testing.assert_allclose(image, cornell_references[name], rtol=1e-6, atol=1e-12)
+
+
+@pytest.mark.parametrize("name", INTEGRATORS)
+@pytest.mark.parametrize("s", [2.0 ** -498, 2.0 ** -300, 2.0 ** 300, 2.0 ** 498])
+def test_cornell_box_scaled_by_a_power_of_two_renders_exactly_the_same_image(
+        cornell_references, tmp_path, name, s):
+    # 2**-498 ~ 1.2e-150, 2**498 ~ 8.2e149: only the exponents of every number change
+    image = render(INTEGRATORS[name](str(tmp_path / name), s),
+                   scaled_copy(cornell_box_scene(0.75, 2), s))
+    assert np.array_equal(image, cornell_references[name])
 
 
 # ------------------------------------------------------------------------------------------
