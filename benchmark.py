@@ -53,7 +53,8 @@ from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from AppRenderer import FIGURES, SCENES, make_integrator, positive_arg
 from PyRT_Common import BLACK, Length, Normalize, Ray
-from PyRT_Integrators import Integrator, usable_cores
+from PyRT_Integrators import Integrator
+from PyRT_Rendering import usable_cores
 
 OUT_DIR = Path(__file__).resolve().parent / "out"
 SCENE_NAMES = {"cornell": "Cornell box", "sphere": "sphere scene"}

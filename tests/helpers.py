@@ -1,4 +1,10 @@
-"""Helpers shared by test_integrators.py, test_app.py and test_references.py."""
+"""Helpers shared by the tests: small scenes, test integrators, running the scripts.
+
+Most test scenes use a camera with a vertical field of view of 90 degrees, so
+tan(fov/2) = 1: pixel (x, y) of a width x height image looks along
+(x_s * width/height, y_s, -1) with x_s = 2(x + 0.5)/width - 1 and y_s = 1 - 2(y + 0.5)/height.
+The centre pixel of an image with odd sides looks straight down -z."""
+import math
 import os
 import subprocess
 import sys
@@ -6,6 +12,10 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
+
+from AppRenderer import cornell_box_scene
+from PyRT_Core import *
+from PyRT_Integrators import *
 
 REPO = Path(__file__).resolve().parent.parent
 APP = REPO / "AppRenderer.py"
@@ -42,3 +52,60 @@ def run_python(args, cwd):
     """Runs `python *args` headless in cwd and returns the CompletedProcess (text output)."""
     return subprocess.run([sys.executable, *map(str, args)], cwd=cwd, env=headless_env(),
                           capture_output=True, text=True, timeout=SUBPROCESS_TIMEOUT)
+
+
+# ------------------------------------------------------------------------------------------
+# Small scenes and test integrators
+# ------------------------------------------------------------------------------------------
+GREY = RGBColor(0.5, 0.5, 0.5)
+
+
+def fov90_scene(width, height, objects=(), lights=(), ambient=BLACK):
+    """A scene seen by a width x height camera with a 90 degree field of view; objects are
+    (primitive, albedo) pairs and get a Lambertian BRDF of that albedo."""
+    scene = Scene()
+    scene.set_ambient(ambient)
+    for primitive, albedo in objects:
+        primitive.set_BRDF(Lambertian(albedo))
+        scene.add_object(primitive)
+    for position, intensity in lights:
+        scene.add_point_light_sources(PointLight(position, intensity))
+    scene.set_camera(Camera(width, height, 90))
+    return scene
+
+
+def direction_through(x, y, width, height):
+    """The (unnormalised) direction of the ray through the centre of pixel (x, y) of a
+    90 degree camera, from the formula in this module's docstring."""
+    return ((2 * (x + 0.5) / width - 1) * width / height, 1 - 2 * (y + 0.5) / height, -1.0)
+
+
+def pixel_of(ray, camera):
+    """The pixel whose centre ray is `ray`: get_direction inverted, so that a test
+    integrator can give chosen pixels chosen colours."""
+    d = ray.d
+    scale_y = math.tan(camera.vertical_fov / 2)
+    x_s = d.x / -d.z / (scale_y * camera.aspect_ratio)
+    y_s = d.y / -d.z / scale_y
+    return (round((x_s + 1) * camera.width / 2 - 0.5),
+            round((1 - y_s) * camera.height / 2 - 0.5))
+
+
+def small_cornell_box(size):
+    return cornell_box_scene(0.75, 2, width=size, height=size)
+
+
+class PixelGrey(Integrator):
+    """Grey (x + 10 y) / 100 at pixel (x, y), found from the ray's direction."""
+
+    def __init__(self, filename_):
+        super().__init__(filename_ + "_PixelGrey")
+        self.calls = 0
+
+    def grey(self, x, y):
+        return (x + 10 * y) / 100
+
+    def compute_color(self, ray):
+        self.calls += 1
+        g = self.grey(*pixel_of(ray, self.scene.camera))
+        return RGBColor(g, g, g)
