@@ -288,7 +288,7 @@ def draw_sheet(comparisons: Sequence[Union[Comparison, MissingReference]]) -> Fi
         bar = sheet.colorbar(heat, cax=axes(columns[2] + w + BAR_GAP, top, BAR_WIDTH, h))
         bar.locator = MaxNLocator(integer=True)
         bar.update_ticks()
-        bar.set_label("8-bit steps")
+        bar.set_label("8-bit steps (1 step or less: black)")
     return sheet
 
 
