@@ -1,7 +1,8 @@
 """Builds a scene, renders it with an integrator, saves the image to out/ and shows it.
 
 Run it with no arguments (the play button of VSCode) to render Figure 1 of the course, Phong
-on the Cornell box; `python AppRenderer.py --help` lists the options.
+on the Cornell box; `python AppRenderer.py --help` lists the options. With --all-figures it
+renders the images of Figures 1-5 and compares them with the course's (see PyRT_Compare.py).
 """
 import argparse
 import sys
@@ -11,10 +12,12 @@ from pathlib import Path
 from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
+from PyRT_Compare import REFERENCE_SIZE, compare_figures, write_sheet
 
 # out/ next to this script, wherever it is run from
 DIRECTORY = str(Path(__file__).resolve().parent / "out") + "/"
 FILENAME = "rendered_image"
+SHEET_FILENAME = "figures_vs_reference.png"
 ENV_MAP_PATH = str(Path(__file__).resolve().parent / "env_maps" / "environment.hdr")
 
 
@@ -122,6 +125,40 @@ def make_integrator(name, filename, max_depth=None, experiment_name=""):
     return INTEGRATORS[name](filename, experiment_name=experiment_name)
 
 
+def figure_integrator(entry, filename):
+    """The integrator of an entry of FIGURES, writing to filename_<Integrator>_<figure>."""
+    figure, name, _, max_depth = entry
+    return make_integrator(name, filename, max_depth, "_" + figure)
+
+
+def reference_name(entry):
+    """The name of an entry of FIGURES among the course's reference images in
+    tests/reference/: figure1_phong, figure2_lazy, ..., figure4_depth, figure4_normal."""
+    figure, name, _, _ = entry
+    return f"{figure}_{name}"
+
+
+def compare_with_course(renders, folder, size, samples_per_pixel=1):
+    """Compares the renders of the course's figures (a dict from their reference names to
+    their PNGs) with the reference images, prints one line per figure and writes the
+    comparison sheet figures_vs_reference.png into folder. Returns the sheet's path, or None
+    when the images are not the size of the references (size is (width, height))."""
+    if size != (REFERENCE_SIZE, REFERENCE_SIZE):
+        print(f"The course's reference images are {REFERENCE_SIZE} x {REFERENCE_SIZE} "
+              f"pixels and these {size[0]} x {size[1]}: not compared with them (render at "
+              f"the default size to compare).")
+        return None
+    print("Compared with the course's figures (tests/reference/):")
+    if samples_per_pixel != 1:
+        print("(the figures have one ray per pixel: with more, the edges differ from them)")
+    comparisons = compare_figures(renders)
+    for comparison in comparisons:
+        print("  " + comparison.summary)
+    sheet = write_sheet(comparisons, Path(folder) / SHEET_FILENAME)
+    print(f"Saved {sheet}: each figure beside the course's, and their difference")
+    return sheet
+
+
 def render(integrator, scene, workers=None, samples_per_pixel=1):
     """Renders scene with integrator, prints the rendering time and returns the PNG path."""
     integrator.add_scene(scene)
@@ -194,7 +231,9 @@ def parse_args(argv):
                         help="save the image without showing it")
     parser.add_argument("--all-figures", action="store_true",
                         help="render the six images of the course's Figures 1-5 as "
-                             "out/rendered_image_<Integrator>_figure<N>.png")
+                             "out/rendered_image_<Integrator>_figure<N>.png, compare them "
+                             "with the course's and show them side by side in "
+                             f"out/{SHEET_FILENAME}")
     return parser.parse_args(argv)
 
 
@@ -202,14 +241,18 @@ def main(argv=None):
     args = parse_args(argv)
     base = str(Path(args.out) / FILENAME)
     if args.all_figures:
-        jobs = [(make_integrator(name, base, depth, "_" + figure), SCENES[scene])
-                for figure, name, scene, depth in FIGURES]
+        jobs = [(figure_integrator(entry, base), SCENES[entry[2]]) for entry in FIGURES]
     else:
         jobs = [(make_integrator(args.integrator, base, args.max_depth), SCENES[args.scene])]
     pngs = [render(integrator, make_scene(args.width, args.height), args.workers, args.spp)
             for integrator, make_scene in jobs]
+    shown = pngs[-1]
+    if args.all_figures:
+        renders = {reference_name(entry): png for entry, png in zip(FIGURES, pngs)}
+        sheet = compare_with_course(renders, args.out, (args.width, args.height), args.spp)
+        shown = sheet or shown
     if not args.no_window:
-        show(pngs[-1])
+        show(shown)
     return 0
 
 

@@ -1,14 +1,17 @@
-"""AppRenderer.py: its scenes hold the course's numbers, and the script runs from any
-folder, without a display, with the options it documents."""
+"""AppRenderer.py: its scenes hold the course's numbers, the script runs from any folder,
+without a display, with the options it documents, and --all-figures compares the figures
+with the course's."""
 import math
 import re
 import shutil
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
 import AppRenderer
 from helpers import APP, REPO, run_python
+from PyRT_Compare import REFERENCE_DIR
 from PyRT_Core import Parallelogram, Sphere
 from PyRT_Integrators import PhongIntegrator
 
@@ -136,6 +139,7 @@ def test_script_renders_headless_from_another_folder(tmp_path):
     out = tmp_path / "images"
     result = run_python([APP, "--width", 16, "--height", 12, "--out", out], cwd=tmp_path)
     assert result.returncode == 0, result.stderr
+    assert "No display: the image is saved, not shown." in result.stdout
     for suffix in (".png", ".npy", ".hdr"):
         assert (out / ("rendered_image_Phong" + suffix)).is_file()
     expected = PhongIntegrator(str(tmp_path / "expected"))
@@ -175,11 +179,38 @@ def test_all_figures_writes_the_six_figure_images(tmp_path):
              "Normal_figure4", "Phong_figure5"]
     expected = {f"rendered_image_{name}{suffix}"
                 for name in names for suffix in (".png", ".npy", ".hdr")}
-    assert {path.name for path in tmp_path.iterdir()} == expected
+    assert {path.name for path in tmp_path.iterdir()} == expected  # no comparison sheet
+    assert "reference images are 500 x 500 pixels and these 10 x 10" in result.stdout
     # Figure 4's depth uses max_depth 5: the nearest point of the sphere, 3 away, would be
     # 1 - 3/5 = 0.4 (0.7 with the default 10); the centre rays at 10 x 10 pass just beside it.
     depth = np.load(tmp_path / "rendered_image_Depth_figure4.npy")
     assert 0.35 < depth.max() <= 0.4
+
+
+FIGURE_NAMES = ["figure1_phong", "figure2_lazy", "figure3_intersection", "figure4_depth",
+                "figure4_normal", "figure5_phong"]
+
+
+def test_all_figures_at_500_pixels_match_the_course_and_write_the_sheet(all_figures):
+    result, out = all_figures
+    assert result.returncode == 0, result.stderr
+    # one line per figure, in order; a render may lie one 8-bit step from its reference
+    lines = [line.split(" (")[0] for line in map(str.strip, result.stdout.splitlines())
+             if line.startswith("figure")]
+    assert lines == [f"{name}: matches" for name in FIGURE_NAMES]
+    sheet = plt.imread(out / "figures_vs_reference.png")
+    # six rows of three 500 x 500 panels, with labels between them
+    assert sheet.shape[0] > 6 * 500 and sheet.shape[1] > 3 * 500
+
+
+def test_a_figure_without_a_reference_is_reported_not_raised(tmp_path, capsys):
+    png = REFERENCE_DIR / "figure2_lazy.png"
+    sheet = AppRenderer.compare_with_course({"figure2_lazy": png, "figure9_extra": png},
+                                            tmp_path, (500, 500))
+    assert sheet == tmp_path / "figures_vs_reference.png" and sheet.is_file()
+    output = capsys.readouterr().out
+    assert "figure2_lazy: matches" in output
+    assert "figure9_extra: no reference image to compare with" in output
 
 
 @pytest.mark.parametrize("arguments, named", [
@@ -196,3 +227,4 @@ def test_bad_option_fails_with_a_message_naming_it(tmp_path, arguments, named):
     assert result.returncode != 0
     assert re.search(named, result.stderr), result.stderr
     assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
+
