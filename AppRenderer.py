@@ -170,15 +170,73 @@ def render(integrator, scene, workers=None, samples_per_pixel=1):
     return png
 
 
+# Room a window needs on the screen besides its image, in pixels (width, height): borders,
+# title bar and matplotlib's toolbar, and a task bar at the edge of the screen
+WINDOW_FRAME = (40, 160)
+
+
 def show(png):
-    """Shows the saved image in a window, when there is a screen to show it on."""
+    """Shows the saved image in a window titled with its file name, pixel for pixel: one
+    screen pixel for each pixel of the image, nothing smoothed, so that stair steps and
+    edges look as they are. An image too large for the screen is scaled down to fit, and a
+    message says so. Without a screen it only says that the image is saved."""
     if not _has_display():
         print("No display: the image is saved, not shown.")
         return
-    plt.figure(Path(png).name)
-    plt.imshow(plt.imread(png))
-    plt.axis("off")
+    pixels = plt.imread(png)
+    height, width = pixels.shape[:2]
+    dpi = plt.rcParams["figure.dpi"]
+    figure = plt.figure(Path(png).name, figsize=(width / dpi, height / dpi))
+    screen = _screen_size(figure)
+    scale = 1.0 if screen is None else window_scale((width, height), screen)
+    if scale < 1.0:
+        print(f"The image is {width} x {height} pixels, too large for this screen "
+              f"({screen[0]} x {screen[1]}): the window shows it scaled to {scale:.0%}. "
+              f"Zoom in with the window's magnifier, or open {png}, to see every pixel.")
+    axes = figure.add_axes((0, 0, 1, 1))  # the whole window, no margins
+    axes.set_axis_off()
+    # Scaled down, "antialiased" averages the pixels that share a screen pixel
+    axes.imshow(pixels, interpolation="none" if scale == 1.0 else "antialiased")
+    _keep_size_in_pixels(figure, (max(1, round(width * scale)), max(1, round(height * scale))))
     plt.show()
+
+
+def window_scale(image_size, screen_size):
+    """The factor by which a window shows an image of image_size = (width, height) pixels on
+    a screen of screen_size pixels: 1, one screen pixel per image pixel, when the image fits
+    on the screen beside the window's frame (WINDOW_FRAME), else the largest factor that
+    fits."""
+    room = [max(screen - frame, 1) for screen, frame in zip(screen_size, WINDOW_FRAME)]
+    return min(1.0, room[0] / image_size[0], room[1] / image_size[1])
+
+
+def _screen_size(figure):
+    """(width, height) of the screen in pixels, as the figure's window reports it; None when
+    it cannot tell. Only Tk's windows are asked: matplotlib uses Tk on Windows and Linux
+    unless another GUI toolkit is installed."""
+    window = getattr(figure.canvas.manager, "window", None)
+    try:
+        return window.winfo_screenwidth(), window.winfo_screenheight()
+    except AttributeError:
+        return None
+
+
+def _keep_size_in_pixels(figure, size):
+    """Makes figure `size` = (width, height) screen pixels large. matplotlib sizes figures
+    in inches and enlarges them by the screen's scaling (125% in Windows' display settings,
+    say), which it learns once the window is on the screen, and then resizes the figure: so
+    the size is set now, and again when the figure is resized after a change of its dots
+    per inch. Resizing the window by hand still works."""
+    sized_for = None
+
+    def fit(event=None):
+        nonlocal sized_for
+        if figure.dpi != sized_for:
+            sized_for = figure.dpi
+            figure.set_size_inches(size[0] / figure.dpi, size[1] / figure.dpi)
+
+    fit()
+    figure.canvas.mpl_connect("resize_event", fit)
 
 
 def _has_display():

@@ -1,6 +1,6 @@
 """AppRenderer.py: its scenes hold the course's numbers, the script runs from any folder,
-without a display, with the options it documents, and --all-figures compares the figures
-with the course's."""
+without a display, with the options it documents, --all-figures compares the figures with
+the course's, and the window shows an image pixel for pixel."""
 import math
 import re
 import shutil
@@ -8,6 +8,7 @@ import shutil
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+from matplotlib.backend_bases import ResizeEvent
 
 import AppRenderer
 from helpers import APP, REPO, run_python
@@ -228,3 +229,76 @@ def test_bad_option_fails_with_a_message_naming_it(tmp_path, arguments, named):
     assert re.search(named, result.stderr), result.stderr
     assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
 
+
+# ------------------------------------------------------------------------------------------
+# The window
+# ------------------------------------------------------------------------------------------
+FRAME_WIDTH, FRAME_HEIGHT = AppRenderer.WINDOW_FRAME
+
+
+@pytest.mark.parametrize("image, screen, scale", [
+    ((500, 500), (1280, 1024), 1.0),                                    # fits
+    ((1280 - FRAME_WIDTH, 1024 - FRAME_HEIGHT), (1280, 1024), 1.0),     # fits exactly
+    ((500, 500), (400, 300), (300 - FRAME_HEIGHT) / 500),               # too tall
+    ((2000, 100), (1280, 1024), (1280 - FRAME_WIDTH) / 2000),           # too wide
+])
+def test_window_scale_is_one_unless_the_image_does_not_fit(image, screen, scale):
+    assert AppRenderer.window_scale(image, screen) == pytest.approx(scale)
+
+
+def shown_figure(monkeypatch, png, screen):
+    """The figure AppRenderer.show(png) puts in its window, on a screen of screen pixels
+    (a fake screen: the tests run without one)."""
+    shown = []
+    monkeypatch.setattr(AppRenderer, "_has_display", lambda: True)
+    monkeypatch.setattr(AppRenderer, "_screen_size", lambda figure: screen)
+    monkeypatch.setattr(plt, "show", lambda: shown.append(plt.gcf()))
+    AppRenderer.show(str(png))
+    [figure] = shown
+    return figure
+
+
+def size_in_pixels(figure):
+    return tuple(round(v) for v in figure.get_size_inches() * figure.dpi)
+
+
+@pytest.fixture
+def png_500(tmp_path):
+    png = tmp_path / "rendered_image_Test.png"
+    plt.imsave(png, np.zeros((500, 500, 3)))
+    return png
+
+
+def test_show_draws_the_image_pixel_for_pixel_when_it_fits(monkeypatch, capsys, png_500):
+    figure = shown_figure(monkeypatch, png_500, (1280, 1024))
+    try:
+        assert size_in_pixels(figure) == (500, 500)
+        assert figure.get_label() == "rendered_image_Test.png"  # the window's title
+        [axes] = figure.axes
+        assert tuple(axes.get_position().bounds) == (0, 0, 1, 1)
+        assert not axes.axison
+        assert axes.images[0].get_interpolation() == "none"
+        assert "scaled" not in capsys.readouterr().out
+        # A screen scaled to 125%, known once the window is on it, raises the figure's dots
+        # per inch; the next resize brings the figure back to 500 x 500 screen pixels.
+        figure.set_dpi(figure.dpi * 1.25)
+        assert size_in_pixels(figure) == (625, 625)
+        figure.canvas.callbacks.process("resize_event",
+                                        ResizeEvent("resize_event", figure.canvas))
+        assert size_in_pixels(figure) == (500, 500)
+    finally:
+        plt.close(figure)
+
+
+def test_show_scales_an_image_too_large_for_the_screen_and_says_so(monkeypatch, capsys,
+                                                                   png_500):
+    figure = shown_figure(monkeypatch, png_500, (400, 300))
+    try:
+        # (300 - 160) / 500 = 0.28 of 500 pixels
+        assert FRAME_HEIGHT == 160
+        assert size_in_pixels(figure) == (140, 140)
+        output = capsys.readouterr().out
+        assert "500 x 500" in output and "400 x 300" in output
+        assert "scaled to 28%" in output
+    finally:
+        plt.close(figure)
