@@ -1,9 +1,12 @@
 """AppRenderer.py: its scenes hold the course's numbers, the script runs from any folder,
 without a display, with the options it documents, --all-figures compares the figures with
-the course's, and the window shows an image pixel for pixel."""
+the course's, the window shows an image pixel for pixel, and VSCode finds the run
+configurations and the tests."""
+import json
 import math
 import re
 import shutil
+from pathlib import PurePosixPath, PureWindowsPath
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -302,3 +305,61 @@ def test_show_scales_an_image_too_large_for_the_screen_and_says_so(monkeypatch, 
         assert "scaled to 28%" in output
     finally:
         plt.close(figure)
+
+
+# ------------------------------------------------------------------------------------------
+# VSCode
+# ------------------------------------------------------------------------------------------
+def vscode_settings(name):
+    """A file of .vscode/, parsed by the strict json module: VSCode would accept comments
+    and trailing commas, but a file without them is plain JSON for every tool."""
+    return json.loads((REPO / ".vscode" / name).read_text(encoding="utf-8"))
+
+
+def strings_in(value):
+    """Every string value inside parsed JSON."""
+    if isinstance(value, str):
+        yield value
+    elif isinstance(value, dict):
+        for item in value.values():
+            yield from strings_in(item)
+    elif isinstance(value, list):
+        for item in value:
+            yield from strings_in(item)
+
+
+@pytest.mark.parametrize("name", ["launch.json", "settings.json"])
+def test_vscode_files_are_json_naming_only_files_of_the_repository(name):
+    values = list(strings_in(vscode_settings(name)))
+    named = [value for value in values if "${workspaceFolder}" in value]
+    for value in named:
+        assert value.startswith("${workspaceFolder}"), value
+        assert (REPO / value.removeprefix("${workspaceFolder}").lstrip("/")).exists(), value
+    # nothing of one machine: no absolute path (an interpreter, say)
+    assert not [value for value in values
+                if PurePosixPath(value).is_absolute() or PureWindowsPath(value).is_absolute()]
+
+
+def test_vscode_runs_figure_1_and_all_figures_with_the_selected_interpreter():
+    launch = vscode_settings("launch.json")
+    assert launch["version"] == "0.2.0"
+    configurations = {c["name"]: c for c in launch["configurations"]}
+    assert list(configurations) == ["Figure 1", "All figures"]
+    for configuration in configurations.values():
+        assert configuration["type"] == "debugpy"
+        assert configuration["request"] == "launch"
+        assert configuration["program"] == "${workspaceFolder}/AppRenderer.py"
+        assert configuration["console"] == "integratedTerminal"
+        assert "python" not in configuration  # VSCode uses the interpreter selected
+    figure1 = AppRenderer.parse_args(configurations["Figure 1"].get("args", []))
+    assert (figure1.all_figures, figure1.integrator, figure1.scene) == (False, "phong",
+                                                                         "cornell")
+    assert AppRenderer.parse_args(configurations["All figures"]["args"]).all_figures
+
+
+def test_vscode_test_explorer_runs_pytest_on_the_tests_folder():
+    settings = vscode_settings("settings.json")
+    assert settings["python.testing.pytestEnabled"] is True
+    assert settings["python.testing.unittestEnabled"] is False
+    assert settings["python.testing.pytestArgs"] == ["tests"]
+    assert (REPO / "tests").is_dir()
