@@ -173,6 +173,9 @@ def render(integrator, scene, workers=None, samples_per_pixel=1):
 # Room a window needs on the screen besides its image, in pixels (width, height): borders,
 # title bar and matplotlib's toolbar, and a task bar at the edge of the screen
 WINDOW_FRAME = (40, 160)
+# The narrowest window, in pixels: room for all of matplotlib's toolbar (zoom, save, ...).
+# A narrower image is shown at its size at the window's left edge.
+MIN_WINDOW_WIDTH = 320
 
 
 def show(png):
@@ -185,8 +188,10 @@ def show(png):
         return
     pixels = plt.imread(png)
     height, width = pixels.shape[:2]
-    dpi = plt.rcParams["figure.dpi"]
-    figure = plt.figure(Path(png).name, figsize=(width / dpi, height / dpi))
+    # Created one pixel small and enlarged below: matplotlib's toolbar keeps the window at
+    # least as wide as the figure was when it was created, too wide for a scaled-down image.
+    one_pixel = 1 / plt.rcParams["figure.dpi"]
+    figure = plt.figure(Path(png).name, figsize=(one_pixel, one_pixel))
     screen = _screen_size(figure)
     scale = 1.0 if screen is None else window_scale((width, height), screen)
     if scale < 1.0:
@@ -195,9 +200,11 @@ def show(png):
               f"Zoom in with the window's magnifier, or open {png}, to see every pixel.")
     axes = figure.add_axes((0, 0, 1, 1))  # the whole window, no margins
     axes.set_axis_off()
+    axes.set_anchor("W")  # whole pixels from the left edge, where centring could split them
     # Scaled down, "antialiased" averages the pixels that share a screen pixel
     axes.imshow(pixels, interpolation="none" if scale == 1.0 else "antialiased")
-    _keep_size_in_pixels(figure, (max(1, round(width * scale)), max(1, round(height * scale))))
+    _keep_size_in_pixels(figure, (max(MIN_WINDOW_WIDTH, round(width * scale)),
+                                  max(1, round(height * scale))))
     plt.show()
 
 

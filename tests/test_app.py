@@ -265,6 +265,12 @@ def size_in_pixels(figure):
     return tuple(round(v) for v in figure.get_size_inches() * figure.dpi)
 
 
+def image_box_in_pixels(figure):
+    """(left, bottom, width, height) of the drawn image in the figure, in pixels."""
+    figure.canvas.draw()
+    return tuple(round(v) for v in figure.axes[0].get_window_extent().bounds)
+
+
 @pytest.fixture
 def png_500(tmp_path):
     png = tmp_path / "rendered_image_Test.png"
@@ -276,9 +282,9 @@ def test_show_draws_the_image_pixel_for_pixel_when_it_fits(monkeypatch, capsys, 
     figure = shown_figure(monkeypatch, png_500, (1280, 1024))
     try:
         assert size_in_pixels(figure) == (500, 500)
+        assert image_box_in_pixels(figure) == (0, 0, 500, 500)
         assert figure.get_label() == "rendered_image_Test.png"  # the window's title
         [axes] = figure.axes
-        assert tuple(axes.get_position().bounds) == (0, 0, 1, 1)
         assert not axes.axison
         assert axes.images[0].get_interpolation() == "none"
         assert "scaled" not in capsys.readouterr().out
@@ -297,9 +303,10 @@ def test_show_scales_an_image_too_large_for_the_screen_and_says_so(monkeypatch, 
                                                                    png_500):
     figure = shown_figure(monkeypatch, png_500, (400, 300))
     try:
-        # (300 - 160) / 500 = 0.28 of 500 pixels
+        # (300 - 160) / 500 = 0.28 of 500 pixels; the window is as wide as its toolbar
         assert FRAME_HEIGHT == 160
-        assert size_in_pixels(figure) == (140, 140)
+        assert image_box_in_pixels(figure) == (0, 0, 140, 140)
+        assert size_in_pixels(figure) == (AppRenderer.MIN_WINDOW_WIDTH, 140)
         output = capsys.readouterr().out
         assert "500 x 500" in output and "400 x 300" in output
         assert "scaled to 28%" in output
@@ -363,3 +370,16 @@ def test_vscode_test_explorer_runs_pytest_on_the_tests_folder():
     assert settings["python.testing.unittestEnabled"] is False
     assert settings["python.testing.pytestArgs"] == ["tests"]
     assert (REPO / "tests").is_dir()
+
+
+def test_show_keeps_a_narrow_image_at_its_size_in_a_window_as_wide_as_the_toolbar(
+        monkeypatch, tmp_path):
+    png = tmp_path / "narrow.png"
+    plt.imsave(png, np.zeros((80, 100, 3)))
+    figure = shown_figure(monkeypatch, png, (1280, 1024))
+    try:
+        assert image_box_in_pixels(figure) == (0, 0, 100, 80)
+        assert size_in_pixels(figure) == (AppRenderer.MIN_WINDOW_WIDTH, 80)
+        assert figure.axes[0].images[0].get_interpolation() == "none"
+    finally:
+        plt.close(figure)
