@@ -1,7 +1,8 @@
 """Builds a scene, renders it with an integrator, saves the image to out/ and shows it.
 
 Run it with no arguments (the play button of VSCode) to render Figure 1 of the course, Phong
-on the Cornell box; `python AppRenderer.py --help` lists the options.
+on the Cornell box; `python AppRenderer.py --help` lists the options. With --all-figures it
+renders the images of Figures 1-5 and compares them with the course's (see PyRT_Compare.py).
 """
 import argparse
 import sys
@@ -11,10 +12,12 @@ from pathlib import Path
 from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
+from PyRT_Compare import REFERENCE_SIZE, compare_figures, write_sheet
 
 # out/ next to this script, wherever it is run from
 DIRECTORY = str(Path(__file__).resolve().parent / "out") + "/"
 FILENAME = "rendered_image"
+SHEET_FILENAME = "figures_vs_reference.png"
 ENV_MAP_PATH = str(Path(__file__).resolve().parent / "env_maps" / "environment.hdr")
 
 
@@ -122,6 +125,40 @@ def make_integrator(name, filename, max_depth=None, experiment_name=""):
     return INTEGRATORS[name](filename, experiment_name=experiment_name)
 
 
+def figure_integrator(entry, filename):
+    """The integrator of an entry of FIGURES, writing to filename_<Integrator>_<figure>."""
+    figure, name, _, max_depth = entry
+    return make_integrator(name, filename, max_depth, "_" + figure)
+
+
+def reference_name(entry):
+    """The name of an entry of FIGURES among the course's reference images in
+    tests/reference/: figure1_phong, figure2_lazy, ..., figure4_depth, figure4_normal."""
+    figure, name, _, _ = entry
+    return f"{figure}_{name}"
+
+
+def compare_with_course(renders, folder, size, samples_per_pixel=1):
+    """Compares the renders of the course's figures (a dict from their reference names to
+    their PNGs) with the reference images, prints one line per figure and writes the
+    comparison sheet figures_vs_reference.png into folder. Returns the sheet's path, or None
+    when the images are not the size of the references (size is (width, height))."""
+    if size != (REFERENCE_SIZE, REFERENCE_SIZE):
+        print(f"The course's reference images are {REFERENCE_SIZE} x {REFERENCE_SIZE} "
+              f"pixels and these {size[0]} x {size[1]}: not compared with them (render at "
+              f"the default size to compare).")
+        return None
+    print("Compared with the course's figures (tests/reference/):")
+    if samples_per_pixel != 1:
+        print("(the figures have one ray per pixel: with more, the edges differ from them)")
+    comparisons = compare_figures(renders)
+    for comparison in comparisons:
+        print("  " + comparison.summary)
+    sheet = write_sheet(comparisons, Path(folder) / SHEET_FILENAME)
+    print(f"Saved {sheet}: each figure beside the course's, and their difference")
+    return sheet
+
+
 def render(integrator, scene, workers=None, samples_per_pixel=1):
     """Renders scene with integrator, prints the rendering time and returns the PNG path."""
     integrator.add_scene(scene)
@@ -133,15 +170,80 @@ def render(integrator, scene, workers=None, samples_per_pixel=1):
     return png
 
 
+# Room a window needs on the screen besides its image, in pixels (width, height): borders,
+# title bar and matplotlib's toolbar, and a task bar at the edge of the screen
+WINDOW_FRAME = (40, 160)
+# The narrowest window, in pixels: room for all of matplotlib's toolbar (zoom, save, ...).
+# A narrower image is shown at its size at the window's left edge.
+MIN_WINDOW_WIDTH = 320
+
+
 def show(png):
-    """Shows the saved image in a window, when there is a screen to show it on."""
+    """Shows the saved image in a window titled with its file name, pixel for pixel: one
+    screen pixel for each pixel of the image, nothing smoothed, so that stair steps and
+    edges look as they are. An image too large for the screen is scaled down to fit, and a
+    message says so. Without a screen it only says that the image is saved."""
     if not _has_display():
         print("No display: the image is saved, not shown.")
         return
-    plt.figure(Path(png).name)
-    plt.imshow(plt.imread(png))
-    plt.axis("off")
+    pixels = plt.imread(png)
+    height, width = pixels.shape[:2]
+    # Created one pixel small and enlarged below: matplotlib's toolbar keeps the window at
+    # least as wide as the figure was when it was created, too wide for a scaled-down image.
+    one_pixel = 1 / plt.rcParams["figure.dpi"]
+    figure = plt.figure(Path(png).name, figsize=(one_pixel, one_pixel))
+    screen = _screen_size(figure)
+    scale = 1.0 if screen is None else window_scale((width, height), screen)
+    if scale < 1.0:
+        print(f"The image is {width} x {height} pixels, too large for this screen "
+              f"({screen[0]} x {screen[1]}): the window shows it scaled to {scale:.0%}. "
+              f"Zoom in with the window's magnifier, or open {png}, to see every pixel.")
+    axes = figure.add_axes((0, 0, 1, 1))  # the whole window, no margins
+    axes.set_axis_off()
+    axes.set_anchor("W")  # whole pixels from the left edge, where centring could split them
+    # Scaled down, "antialiased" averages the pixels that share a screen pixel
+    axes.imshow(pixels, interpolation="none" if scale == 1.0 else "antialiased")
+    _keep_size_in_pixels(figure, (max(MIN_WINDOW_WIDTH, round(width * scale)),
+                                  max(1, round(height * scale))))
     plt.show()
+
+
+def window_scale(image_size, screen_size):
+    """The factor by which a window shows an image of image_size = (width, height) pixels on
+    a screen of screen_size pixels: 1, one screen pixel per image pixel, when the image fits
+    on the screen beside the window's frame (WINDOW_FRAME), else the largest factor that
+    fits."""
+    room = [max(screen - frame, 1) for screen, frame in zip(screen_size, WINDOW_FRAME)]
+    return min(1.0, room[0] / image_size[0], room[1] / image_size[1])
+
+
+def _screen_size(figure):
+    """(width, height) of the screen in pixels, as the figure's window reports it; None when
+    it cannot tell. Only Tk's windows are asked: matplotlib uses Tk on Windows and Linux
+    unless another GUI toolkit is installed."""
+    window = getattr(figure.canvas.manager, "window", None)
+    try:
+        return window.winfo_screenwidth(), window.winfo_screenheight()
+    except AttributeError:
+        return None
+
+
+def _keep_size_in_pixels(figure, size):
+    """Makes figure `size` = (width, height) screen pixels large. matplotlib sizes figures
+    in inches and enlarges them by the screen's scaling (125% in Windows' display settings,
+    say), which it learns once the window is on the screen, and then resizes the figure: so
+    the size is set now, and again when the figure is resized after a change of its dots
+    per inch. Resizing the window by hand still works."""
+    sized_for = None
+
+    def fit(event=None):
+        nonlocal sized_for
+        if figure.dpi != sized_for:
+            sized_for = figure.dpi
+            figure.set_size_inches(size[0] / figure.dpi, size[1] / figure.dpi)
+
+    fit()
+    figure.canvas.mpl_connect("resize_event", fit)
 
 
 def _has_display():
@@ -194,7 +296,9 @@ def parse_args(argv):
                         help="save the image without showing it")
     parser.add_argument("--all-figures", action="store_true",
                         help="render the six images of the course's Figures 1-5 as "
-                             "out/rendered_image_<Integrator>_figure<N>.png")
+                             "out/rendered_image_<Integrator>_figure<N>.png, compare them "
+                             "with the course's and show them side by side in "
+                             f"out/{SHEET_FILENAME}")
     return parser.parse_args(argv)
 
 
@@ -202,14 +306,18 @@ def main(argv=None):
     args = parse_args(argv)
     base = str(Path(args.out) / FILENAME)
     if args.all_figures:
-        jobs = [(make_integrator(name, base, depth, "_" + figure), SCENES[scene])
-                for figure, name, scene, depth in FIGURES]
+        jobs = [(figure_integrator(entry, base), SCENES[entry[2]]) for entry in FIGURES]
     else:
         jobs = [(make_integrator(args.integrator, base, args.max_depth), SCENES[args.scene])]
     pngs = [render(integrator, make_scene(args.width, args.height), args.workers, args.spp)
             for integrator, make_scene in jobs]
+    shown = pngs[-1]
+    if args.all_figures:
+        renders = {reference_name(entry): png for entry, png in zip(FIGURES, pngs)}
+        sheet = compare_with_course(renders, args.out, (args.width, args.height), args.spp)
+        shown = sheet or shown
     if not args.no_window:
-        show(pngs[-1])
+        show(shown)
     return 0
 
 

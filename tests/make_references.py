@@ -31,9 +31,7 @@ if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))
 
 import AppRenderer  # noqa: E402  (needs the repository on the import path first)
-
-REFERENCE_DIR = TESTS / "reference"
-SIZE = 500
+from PyRT_Compare import REFERENCE_DIR, REFERENCE_SIZE as SIZE  # noqa: E402
 
 
 class Figure(NamedTuple):
@@ -46,7 +44,7 @@ class Figure(NamedTuple):
 
     @property
     def name(self):
-        return f"{self.figure}_{self.integrator}"
+        return AppRenderer.reference_name(self)
 
     @property
     def reference(self):

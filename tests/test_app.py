@@ -1,14 +1,21 @@
-"""AppRenderer.py: its scenes hold the course's numbers, and the script runs from any
-folder, without a display, with the options it documents."""
+"""AppRenderer.py: its scenes hold the course's numbers, the script runs from any folder,
+without a display, with the options it documents, --all-figures compares the figures with
+the course's, the window shows an image pixel for pixel, and VSCode finds the run
+configurations and the tests."""
+import json
 import math
 import re
 import shutil
+from pathlib import PurePosixPath, PureWindowsPath
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+from matplotlib.backend_bases import ResizeEvent
 
 import AppRenderer
 from helpers import APP, REPO, run_python
+from PyRT_Compare import REFERENCE_DIR
 from PyRT_Core import Parallelogram, Sphere
 from PyRT_Integrators import PhongIntegrator
 
@@ -136,6 +143,7 @@ def test_script_renders_headless_from_another_folder(tmp_path):
     out = tmp_path / "images"
     result = run_python([APP, "--width", 16, "--height", 12, "--out", out], cwd=tmp_path)
     assert result.returncode == 0, result.stderr
+    assert "No display: the image is saved, not shown." in result.stdout
     for suffix in (".png", ".npy", ".hdr"):
         assert (out / ("rendered_image_Phong" + suffix)).is_file()
     expected = PhongIntegrator(str(tmp_path / "expected"))
@@ -175,11 +183,38 @@ def test_all_figures_writes_the_six_figure_images(tmp_path):
              "Normal_figure4", "Phong_figure5"]
     expected = {f"rendered_image_{name}{suffix}"
                 for name in names for suffix in (".png", ".npy", ".hdr")}
-    assert {path.name for path in tmp_path.iterdir()} == expected
+    assert {path.name for path in tmp_path.iterdir()} == expected  # no comparison sheet
+    assert "reference images are 500 x 500 pixels and these 10 x 10" in result.stdout
     # Figure 4's depth uses max_depth 5: the nearest point of the sphere, 3 away, would be
     # 1 - 3/5 = 0.4 (0.7 with the default 10); the centre rays at 10 x 10 pass just beside it.
     depth = np.load(tmp_path / "rendered_image_Depth_figure4.npy")
     assert 0.35 < depth.max() <= 0.4
+
+
+FIGURE_NAMES = ["figure1_phong", "figure2_lazy", "figure3_intersection", "figure4_depth",
+                "figure4_normal", "figure5_phong"]
+
+
+def test_all_figures_at_500_pixels_match_the_course_and_write_the_sheet(all_figures):
+    result, out = all_figures
+    assert result.returncode == 0, result.stderr
+    # one line per figure, in order; a render may lie one 8-bit step from its reference
+    lines = [line.split(" (")[0] for line in map(str.strip, result.stdout.splitlines())
+             if line.startswith("figure")]
+    assert lines == [f"{name}: matches" for name in FIGURE_NAMES]
+    sheet = plt.imread(out / "figures_vs_reference.png")
+    # six rows of three 500 x 500 panels, with labels between them
+    assert sheet.shape[0] > 6 * 500 and sheet.shape[1] > 3 * 500
+
+
+def test_a_figure_without_a_reference_is_reported_not_raised(tmp_path, capsys):
+    png = REFERENCE_DIR / "figure2_lazy.png"
+    sheet = AppRenderer.compare_with_course({"figure2_lazy": png, "figure9_extra": png},
+                                            tmp_path, (500, 500))
+    assert sheet == tmp_path / "figures_vs_reference.png" and sheet.is_file()
+    output = capsys.readouterr().out
+    assert "figure2_lazy: matches" in output
+    assert "figure9_extra: no reference image to compare with" in output
 
 
 @pytest.mark.parametrize("arguments, named", [
@@ -196,3 +231,155 @@ def test_bad_option_fails_with_a_message_naming_it(tmp_path, arguments, named):
     assert result.returncode != 0
     assert re.search(named, result.stderr), result.stderr
     assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
+
+
+# ------------------------------------------------------------------------------------------
+# The window
+# ------------------------------------------------------------------------------------------
+FRAME_WIDTH, FRAME_HEIGHT = AppRenderer.WINDOW_FRAME
+
+
+@pytest.mark.parametrize("image, screen, scale", [
+    ((500, 500), (1280, 1024), 1.0),                                    # fits
+    ((1280 - FRAME_WIDTH, 1024 - FRAME_HEIGHT), (1280, 1024), 1.0),     # fits exactly
+    ((500, 500), (400, 300), (300 - FRAME_HEIGHT) / 500),               # too tall
+    ((2000, 100), (1280, 1024), (1280 - FRAME_WIDTH) / 2000),           # too wide
+])
+def test_window_scale_is_one_unless_the_image_does_not_fit(image, screen, scale):
+    assert AppRenderer.window_scale(image, screen) == pytest.approx(scale)
+
+
+def shown_figure(monkeypatch, png, screen):
+    """The figure AppRenderer.show(png) puts in its window, on a screen of screen pixels
+    (a fake screen: the tests run without one)."""
+    shown = []
+    monkeypatch.setattr(AppRenderer, "_has_display", lambda: True)
+    monkeypatch.setattr(AppRenderer, "_screen_size", lambda figure: screen)
+    monkeypatch.setattr(plt, "show", lambda: shown.append(plt.gcf()))
+    AppRenderer.show(str(png))
+    [figure] = shown
+    return figure
+
+
+def size_in_pixels(figure):
+    return tuple(round(v) for v in figure.get_size_inches() * figure.dpi)
+
+
+def image_box_in_pixels(figure):
+    """(left, bottom, width, height) of the drawn image in the figure, in pixels."""
+    figure.canvas.draw()
+    return tuple(round(v) for v in figure.axes[0].get_window_extent().bounds)
+
+
+@pytest.fixture
+def png_500(tmp_path):
+    png = tmp_path / "rendered_image_Test.png"
+    plt.imsave(png, np.zeros((500, 500, 3)))
+    return png
+
+
+def test_show_draws_the_image_pixel_for_pixel_when_it_fits(monkeypatch, capsys, png_500):
+    figure = shown_figure(monkeypatch, png_500, (1280, 1024))
+    try:
+        assert size_in_pixels(figure) == (500, 500)
+        assert image_box_in_pixels(figure) == (0, 0, 500, 500)
+        assert figure.get_label() == "rendered_image_Test.png"  # the window's title
+        [axes] = figure.axes
+        assert not axes.axison
+        assert axes.images[0].get_interpolation() == "none"
+        assert "scaled" not in capsys.readouterr().out
+        # A screen scaled to 125%, known once the window is on it, raises the figure's dots
+        # per inch; the next resize brings the figure back to 500 x 500 screen pixels.
+        figure.set_dpi(figure.dpi * 1.25)
+        assert size_in_pixels(figure) == (625, 625)
+        figure.canvas.callbacks.process("resize_event",
+                                        ResizeEvent("resize_event", figure.canvas))
+        assert size_in_pixels(figure) == (500, 500)
+    finally:
+        plt.close(figure)
+
+
+def test_show_scales_an_image_too_large_for_the_screen_and_says_so(monkeypatch, capsys,
+                                                                   png_500):
+    figure = shown_figure(monkeypatch, png_500, (400, 300))
+    try:
+        # (300 - 160) / 500 = 0.28 of 500 pixels; the window is as wide as its toolbar
+        assert FRAME_HEIGHT == 160
+        assert image_box_in_pixels(figure) == (0, 0, 140, 140)
+        assert size_in_pixels(figure) == (AppRenderer.MIN_WINDOW_WIDTH, 140)
+        output = capsys.readouterr().out
+        assert "500 x 500" in output and "400 x 300" in output
+        assert "scaled to 28%" in output
+    finally:
+        plt.close(figure)
+
+
+# ------------------------------------------------------------------------------------------
+# VSCode
+# ------------------------------------------------------------------------------------------
+def vscode_settings(name):
+    """A file of .vscode/, parsed by the strict json module: VSCode would accept comments
+    and trailing commas, but a file without them is plain JSON for every tool."""
+    return json.loads((REPO / ".vscode" / name).read_text(encoding="utf-8"))
+
+
+def strings_in(value):
+    """Every string value inside parsed JSON."""
+    if isinstance(value, str):
+        yield value
+    elif isinstance(value, dict):
+        for item in value.values():
+            yield from strings_in(item)
+    elif isinstance(value, list):
+        for item in value:
+            yield from strings_in(item)
+
+
+@pytest.mark.parametrize("name", ["launch.json", "settings.json"])
+def test_vscode_files_are_json_naming_only_files_of_the_repository(name):
+    values = list(strings_in(vscode_settings(name)))
+    named = [value for value in values if "${workspaceFolder}" in value]
+    for value in named:
+        assert value.startswith("${workspaceFolder}"), value
+        assert (REPO / value.removeprefix("${workspaceFolder}").lstrip("/")).exists(), value
+    # nothing of one machine: no absolute path (an interpreter, say)
+    assert not [value for value in values
+                if PurePosixPath(value).is_absolute() or PureWindowsPath(value).is_absolute()]
+
+
+def test_vscode_runs_figure_1_and_all_figures_with_the_selected_interpreter():
+    launch = vscode_settings("launch.json")
+    assert launch["version"] == "0.2.0"
+    configurations = {c["name"]: c for c in launch["configurations"]}
+    assert list(configurations) == ["Figure 1", "All figures"]
+    for configuration in configurations.values():
+        assert configuration["type"] == "debugpy"
+        assert configuration["request"] == "launch"
+        assert configuration["program"] == "${workspaceFolder}/AppRenderer.py"
+        assert configuration["console"] == "integratedTerminal"
+        assert "python" not in configuration  # VSCode uses the interpreter selected
+    figure1 = AppRenderer.parse_args(configurations["Figure 1"].get("args", []))
+    assert (figure1.all_figures, figure1.integrator, figure1.scene) == (False, "phong",
+                                                                         "cornell")
+    assert AppRenderer.parse_args(configurations["All figures"]["args"]).all_figures
+
+
+def test_vscode_test_explorer_runs_pytest_on_the_tests_folder():
+    settings = vscode_settings("settings.json")
+    assert settings["python.testing.pytestEnabled"] is True
+    assert settings["python.testing.unittestEnabled"] is False
+    assert settings["python.testing.pytestArgs"] == ["tests"]
+    assert (REPO / "tests").is_dir()
+
+
+def test_show_keeps_a_narrow_image_at_its_size_in_a_window_as_wide_as_the_toolbar(
+        monkeypatch, tmp_path):
+    png = tmp_path / "narrow.png"
+    plt.imsave(png, np.zeros((80, 100, 3)))
+    figure = shown_figure(monkeypatch, png, (1280, 1024))
+    try:
+        assert image_box_in_pixels(figure) == (0, 0, 100, 80)
+        assert size_in_pixels(figure) == (AppRenderer.MIN_WINDOW_WIDTH, 80)
+        assert figure.axes[0].images[0].get_interpolation() == "none"
+    finally:
+        plt.close(figure)
