@@ -275,36 +275,67 @@ def test_ray_through_exact_parallelogram_corner_is_a_hit(shape, a, b):
     assert as_tuple(hit.hit_point) == pytest.approx(as_tuple(corner), abs=1e-12)
 
 
-def test_ray_from_the_corner_along_the_plane_gives_no_error():
-    point, s1, s2 = SQUARE
-    parallelogram = Parallelogram(point, s1, s2)
-    for direction in (s1, s2, s1 + s2):
-        hit = parallelogram.intersect(make_ray(point, Normalize(direction), INF))
-        assert not hit.has_hit or (is_finite(hit.hit_point) and math.isfinite(hit.hit_distance))
+@pytest.mark.parametrize("shape", [SQUARE, SKEWED], ids=["square", "skewed"])
+@pytest.mark.parametrize("side", ["s1", "s2", "diagonal"])
+def test_ray_from_the_corner_along_the_plane_misses(shape, side):
+    # The ray lies in the parallelogram's plane (z = -3), so d.n = 0: like any ray
+    # parallel to the plane it misses, even where it runs across the parallelogram.
+    point, s1, s2 = shape
+    direction = {"s1": s1, "s2": s2, "diagonal": s1 + s2}[side]
+    scene = Scene()
+    scene.add_object(Parallelogram(point, s1, s2))
+    ray = make_ray(point, Normalize(direction), INF)
+    assert scene.object_list[0].intersect(ray).has_hit is False
+    assert scene.closest_hit(ray).has_hit is False
+    assert scene.any_hit(ray) is False
 
 
-PLANAR = [
-    lambda: InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0)),
-    lambda: Parallelogram(Vector3D(-1.0, 0.0, -1.0), Vector3D(0.0, 0.0, 2.0),
-                          Vector3D(2.0, 0.0, 0.0)),
-]
+PLANAR = {
+    "plane": lambda: InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0)),
+    # x and z in [-1, 1], y = 0; Cross(s1, s2) = (0, 4, 0), the same normal as the plane
+    "parallelogram": lambda: Parallelogram(Vector3D(-1.0, 0.0, -1.0),
+                                           Vector3D(0.0, 0.0, 2.0), Vector3D(2.0, 0.0, 0.0)),
+}
+# The ray below starts at (-0.5, height, 0.25) and heads along (1, -tilt, 0), a unit
+# vector to within rounding (1 + tilt^2 rounds to 1): it meets the plane y = 0 at the
+# distance height / tilt. These crossings are positive and finite; all the others lie
+# behind the ray (height and tilt of opposite signs) or overflow to infinity (height /
+# 1e-320 > 1e308).
+FAR_CROSSINGS = {(1.0, 1e-200): 1e200, (1.0, 1e-300): 1e300, (1e6, 1e-200): 1e206,
+                 (1e6, 1e-300): 1e306, (-1.0, -1e-200): 1e200, (-1.0, -1e-300): 1e300}
 
 
-@pytest.mark.parametrize("make", PLANAR, ids=["plane", "parallelogram"])
+def nearly_parallel_hit(kind, tilt, height, t_max):
+    """The distance at which the ray of the test below hits the object, or None."""
+    if tilt == 0.0:
+        return None  # parallel, d.n = 0: a miss, also for the ray lying in the plane
+    if height == 0.0:
+        return 0.0  # starts on the plane (inside the parallelogram, at a = 0.625, b = 0.25)
+    # the far crossings lie beyond t_max = 1e6 and beyond the parallelogram's edge x = 1
+    return FAR_CROSSINGS.get((height, tilt)) if kind == "plane" and t_max == INF else None
+
+
+@pytest.mark.parametrize("kind", PLANAR)
 @pytest.mark.parametrize("tilt", [0.0, 1e-200, -1e-200, 1e-300, -1e-300, 1e-320])
 @pytest.mark.parametrize("height", [1.0, 0.0, -1.0, 1e6])
 @pytest.mark.parametrize("t_max", [HUGEVALUE, INF])
-def test_parallel_and_nearly_parallel_rays_give_no_inf_or_nan(make, tilt, height, t_max):
-    # a ray at y = height, heading along x and tilted by `tilt` towards -y
-    obj = make()
+def test_parallel_and_nearly_parallel_rays_hit_only_where_they_cross_the_plane(
+        kind, tilt, height, t_max):
+    obj = PLANAR[kind]()
     scene = Scene()
     scene.add_object(obj)
     ray = make_ray(Vector3D(-0.5, height, 0.25), Vector3D(1.0, -tilt, 0.0), t_max)
+    expected = nearly_parallel_hit(kind, tilt, height, t_max)
+    assert scene.any_hit(ray) is (expected is not None)
+    # the normal is (0, 1, 0); the parallelogram's faces the ray: flipped when it heads up
+    normal = (0.0, -1.0, 0.0) if kind == "parallelogram" and tilt < 0 else (0.0, 1.0, 0.0)
     for hit in (obj.intersect(ray), scene.closest_hit(ray)):
-        if hit.has_hit:
-            assert math.isfinite(hit.hit_distance) and hit.hit_distance <= t_max
-            assert is_finite(hit.hit_point) and is_finite(hit.normal)
-    assert scene.any_hit(ray) in (True, False)
+        assert hit.has_hit is (expected is not None)
+        if expected is not None:
+            assert hit.hit_distance == pytest.approx(expected, rel=1e-15, abs=0.0)
+            assert as_tuple(hit.hit_point) == pytest.approx(
+                (expected - 0.5, 0.0, 0.25), rel=1e-15, abs=1e-9 * abs(height))
+            assert as_tuple(hit.normal) == normal
 
 
 # ------------------------------------------------------------------------------------------
