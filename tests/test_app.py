@@ -1,12 +1,13 @@
 """AppRenderer.py: its scenes hold the course's numbers, the script runs from any folder,
-without a display, with the options it documents, --all-figures compares the figures with
-the course's, the window shows an image pixel for pixel, and VSCode finds the run
-configurations and the tests."""
+without a display, with the options it documents, each option does what it promises,
+--all-figures compares the figures with the course's, the window shows an image pixel for
+pixel, and VSCode finds the run configurations and the tests."""
+import inspect
 import json
 import math
 import re
 import shutil
-from pathlib import PurePosixPath, PureWindowsPath
+from pathlib import Path, PurePosixPath, PureWindowsPath
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -14,10 +15,12 @@ import pytest
 from matplotlib.backend_bases import ResizeEvent
 
 import AppRenderer
-from helpers import APP, REPO, run_python
+from AppRenderer import cornell_box_scene, sphere_test_scene
+from helpers import APP, REPO, render_image, run_python
 from PyRT_Compare import REFERENCE_DIR
 from PyRT_Core import Parallelogram, Sphere
-from PyRT_Integrators import PhongIntegrator
+from PyRT_Integrators import (DepthIntegrator, IntersectionIntegrator, Integrator,
+                              LazyIntegrator, NormalIntegrator, PhongIntegrator)
 
 
 def xyz(v):
@@ -175,22 +178,6 @@ def test_default_output_folder_is_out_next_to_the_script(tmp_path):
             shutil.move(backup / name, out / name)
 
 
-def test_all_figures_writes_the_six_figure_images(tmp_path):
-    result = run_python([APP, "--all-figures", "--width", 10, "--height", 10,
-                         "--out", tmp_path, "--no-window"], cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
-    names = ["Phong_figure1", "Lazy_figure2", "Intersection_figure3", "Depth_figure4",
-             "Normal_figure4", "Phong_figure5"]
-    expected = {f"rendered_image_{name}{suffix}"
-                for name in names for suffix in (".png", ".npy", ".hdr")}
-    assert {path.name for path in tmp_path.iterdir()} == expected  # no comparison sheet
-    assert "reference images are 500 x 500 pixels and these 10 x 10" in result.stdout
-    # Figure 4's depth uses max_depth 5: the nearest point of the sphere, 3 away, would be
-    # 1 - 3/5 = 0.4 (0.7 with the default 10); the centre rays at 10 x 10 pass just beside it.
-    depth = np.load(tmp_path / "rendered_image_Depth_figure4.npy")
-    assert 0.35 < depth.max() <= 0.4
-
-
 FIGURE_NAMES = ["figure1_phong", "figure2_lazy", "figure3_intersection", "figure4_depth",
                 "figure4_normal", "figure5_phong"]
 
@@ -219,18 +206,19 @@ def test_a_figure_without_a_reference_is_reported_not_raised(tmp_path, capsys):
 
 @pytest.mark.parametrize("arguments, named", [
     (["--integrator", "foo"], "integrator"),
-    (["--spp", "0"], "spp|samples_per_pixel"),
+    (["--spp", "0"], "spp"),
     (["--spp", "two"], "spp"),
     (["--workers", "0"], "workers"),
     (["--width", "0"], "width"),
 ])
-def test_bad_option_fails_with_a_message_naming_it(tmp_path, arguments, named):
+def test_bad_option_exits_with_a_usage_error_naming_it(tmp_path, arguments, named):
     small = ["--width", 8, "--height", 8] if "--width" not in arguments else ["--height", 8]
     result = run_python([APP, *small, *arguments, "--out", tmp_path / "o", "--no-window"],
                         cwd=tmp_path)
-    assert result.returncode != 0
+    assert result.returncode == 2  # argparse's status for a bad command line
+    assert result.stderr.startswith("usage:")
     assert re.search(named, result.stderr), result.stderr
-    assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
+    assert not (tmp_path / "o").exists()
 
 
 # ------------------------------------------------------------------------------------------
@@ -383,3 +371,167 @@ def test_show_keeps_a_narrow_image_at_its_size_in_a_window_as_wide_as_the_toolba
         assert figure.axes[0].images[0].get_interpolation() == "none"
     finally:
         plt.close(figure)
+
+
+# ------------------------------------------------------------------------------------------
+# Each option does what it promises, in the script's own main()
+# ------------------------------------------------------------------------------------------
+class App:
+    """Runs AppRenderer.main in this process, saving into `out`; the images it would show
+    in a window are recorded in `shown` instead."""
+
+    def __init__(self, out):
+        self.out = out
+        self.shown = []
+
+    def run(self, *options, image="rendered_image_Phong"):
+        """main() with these options; returns the linear image saved as `image`.npy."""
+        assert AppRenderer.main(["--out", str(self.out), *map(str, options)]) == 0
+        return np.load(self.out / (image + ".npy"))
+
+
+@pytest.fixture
+def app(tmp_path, monkeypatch):
+    app = App(tmp_path / "out")
+    monkeypatch.setattr(AppRenderer, "show", app.shown.append)
+    return app
+
+
+def library_image(integrator, scene_name, width, height, **render_options):
+    """What the library renders with this integrator on the course scene of that name (the
+    Cornell box with dist 0.75 and side 2), in one process."""
+    if scene_name == "cornell":
+        scene = cornell_box_scene(0.75, 2, width=width, height=height)
+    else:
+        scene = sphere_test_scene(width=width, height=height)
+    return render_image(integrator, scene, workers=1, **render_options)
+
+
+INTEGRATOR_CLASSES = {"lazy": LazyIntegrator, "intersection": IntersectionIntegrator,
+                      "depth": DepthIntegrator, "normal": NormalIntegrator,
+                      "phong": PhongIntegrator}
+
+
+@pytest.mark.parametrize("scene", ["cornell", "sphere"])
+@pytest.mark.parametrize("name", INTEGRATOR_CLASSES)
+def test_integrator_scene_width_and_height_options_choose_the_image(app, tmp_path, name,
+                                                                    scene):
+    integrator = INTEGRATOR_CLASSES[name](str(tmp_path / "library" / "rendered_image"))
+    expected = library_image(integrator, scene, 9, 7)
+    image = app.run("--integrator", name, "--scene", scene, "--width", 9, "--height", 7,
+                    "--no-window", image=Path(integrator.get_filename()).name)
+    assert image.shape == (7, 9, 3)
+    assert np.array_equal(image, expected)
+
+
+@pytest.mark.parametrize("options, max_depth, centre", [
+    ([], 10, 0.7), (["--max-depth", 4], 4, 0.25), (["--max-depth", 7.5], 7.5, 0.6)])
+def test_max_depth_option_sets_the_distance_drawn_black(app, tmp_path, options, max_depth,
+                                                        centre):
+    # The centre pixel of a 9 x 9 image looks straight at the sphere's front, 3 away:
+    # grey 1 - 3/max_depth.
+    image = app.run("--integrator", "depth", "--scene", "sphere", "--width", 9,
+                    "--height", 9, "--no-window", *options, image="rendered_image_Depth")
+    assert image[4, 4] == pytest.approx([centre] * 3, abs=1e-12)
+    integrator = DepthIntegrator(str(tmp_path / "library" / "img"), max_depth)
+    assert np.array_equal(image, library_image(integrator, "sphere", 9, 9))
+
+
+def test_spp_option_averages_that_many_samples_per_pixel(app, tmp_path):
+    one = app.run("--width", 12, "--height", 12, "--no-window", "--spp", 1)
+    sixteen = app.run("--width", 12, "--height", 12, "--no-window", "--spp", 16)
+    expected = library_image(PhongIntegrator(str(tmp_path / "library" / "img")),
+                             "cornell", 12, 12, samples_per_pixel=16)
+    assert np.array_equal(sixteen, expected)
+    assert not np.array_equal(sixteen, one)  # the jagged edges are smoothed
+
+
+@pytest.fixture
+def render_calls(monkeypatch):
+    """The arguments of every Integrator.render call (the course's integrators inherit it),
+    which still renders."""
+    calls = []
+    original = Integrator.render
+    signature = inspect.signature(original)
+
+    def recording(*args, **kwargs):
+        bound = signature.bind(*args, **kwargs)
+        bound.apply_defaults()
+        calls.append({name: value for name, value in bound.arguments.items()
+                      if name != "self"})
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(Integrator, "render", recording)
+    return calls
+
+
+@pytest.mark.parametrize("options, workers, samples", [
+    ([], None, 1), (["--workers", 1], 1, 1), (["--workers", 2], 2, 1),
+    (["--spp", 4], None, 4), (["--workers", 1, "--spp", 9], 1, 9)])
+def test_workers_and_spp_options_reach_render(app, render_calls, options, workers, samples):
+    app.run("--width", 8, "--height", 8, "--no-window", *options)
+    assert [(call["workers"], call["samples_per_pixel"]) for call in render_calls] == [
+        (workers, samples)]
+
+
+def test_any_number_of_workers_gives_the_same_image(app):
+    default = app.run("--width", 16, "--height", 16, "--no-window")
+    one = app.run("--width", 16, "--height", 16, "--no-window", "--workers", 1)
+    two = app.run("--width", 16, "--height", 16, "--no-window", "--workers", 2)
+    assert default.any()
+    assert np.array_equal(one, default) and np.array_equal(two, default)
+
+
+def test_the_saved_image_is_shown_in_a_window(app):
+    app.run("--width", 8, "--height", 8)
+    assert [Path(png) for png in app.shown] == [app.out / "rendered_image_Phong.png"]
+
+
+def test_no_window_saves_without_showing(app):
+    app.run("--width", 8, "--height", 8, "--no-window")
+    assert app.shown == []
+    assert (app.out / "rendered_image_Phong.png").is_file()
+
+
+# The images of --all-figures (README) and what each shows (the course's Figures 1-5).
+FIGURES = {
+    "Phong_figure1": (lambda base: PhongIntegrator(base, "_figure1"), "cornell"),
+    "Lazy_figure2": (lambda base: LazyIntegrator(base, "_figure2"), "sphere"),
+    "Intersection_figure3": (lambda base: IntersectionIntegrator(base, "_figure3"), "sphere"),
+    "Depth_figure4": (lambda base: DepthIntegrator(base, 5, "_figure4"), "sphere"),
+    "Normal_figure4": (lambda base: NormalIntegrator(base, "_figure4"), "sphere"),
+    "Phong_figure5": (lambda base: PhongIntegrator(base, "_figure5"), "sphere"),
+}
+
+
+def test_all_figures_writes_the_six_figure_images(app, tmp_path, capsys):
+    app.run("--all-figures", "--width", 10, "--height", 10, "--no-window",
+            image="rendered_image_Phong_figure1")
+    assert {path.name for path in app.out.iterdir()} == {  # and no comparison sheet
+        f"rendered_image_{name}{suffix}"
+        for name in FIGURES for suffix in (".png", ".npy", ".hdr")}
+    assert "reference images are 500 x 500 pixels and these 10 x 10" in capsys.readouterr().out
+    for name, (make, scene) in FIGURES.items():
+        integrator = make(str(tmp_path / "library" / "rendered_image"))
+        assert np.array_equal(np.load(app.out / f"rendered_image_{name}.npy"),
+                              library_image(integrator, scene, 10, 10)), name
+
+
+BAD_NUMBERS = ["0", "-3", "two"]
+
+
+@pytest.mark.parametrize("option, value", [
+    *[(option, value) for option in ("--width", "--height", "--workers", "--spp")
+      for value in BAD_NUMBERS + ["2.5"]],
+    *[("--max-depth", value) for value in BAD_NUMBERS + ["inf", "nan"]],
+    ("--integrator", "foo"), ("--scene", "box")])
+def test_bad_option_value_is_a_usage_error_before_anything_is_written(tmp_path, capsys,
+                                                                     option, value):
+    out = tmp_path / "out"
+    with pytest.raises(SystemExit) as exited:
+        AppRenderer.main(["--out", str(out), "--width", "8", "--height", "8", "--no-window",
+                          option, value])  # the last value of an option counts
+    assert exited.value.code == 2
+    err = capsys.readouterr().err
+    assert err.startswith("usage:") and f"argument {option}" in err
+    assert not out.exists()

@@ -1,4 +1,8 @@
 """benchmark.py: the measurement protocol and a quick run of the documented command."""
+import time
+
+import pytest
+
 from benchmark import time_renders
 from helpers import REPO, run_python
 
@@ -13,11 +17,50 @@ class RecordingIntegrator:
         self.calls.append(workers)
 
 
-def test_worker_counts_take_turns_so_drift_slows_them_alike():
-    integrator = RecordingIntegrator()
+class FakeClock:
+    """A perf_counter that stands still until advanced."""
+
+    def __init__(self):
+        self.now = 1000.0
+
+    def __call__(self):
+        return self.now
+
+
+@pytest.fixture
+def clock(monkeypatch):
+    """A fake time.perf_counter, in place of the real one while the test runs."""
+    fake = FakeClock()
+    monkeypatch.setattr(time, "perf_counter", fake)
+    return fake
+
+
+class TimedIntegrator(RecordingIntegrator):
+    """A stand-in whose renders take the given durations, in turn, on the fake clock."""
+
+    def __init__(self, clock, durations):
+        super().__init__()
+        self.clock = clock
+        self.durations = list(durations)
+
+    def render(self, workers=None, samples_per_pixel=1, progress=True):
+        super().render(workers, samples_per_pixel, progress)
+        self.clock.now += self.durations.pop(0)
+
+
+def test_worker_counts_take_turns_and_each_gets_the_median_of_its_times(clock):
+    # The renders alternate 1 worker, 2 workers: 1 worker takes 5, 1 and 3 seconds
+    # (median 3), 2 workers take 2, 8 and 4 (median 4).
+    integrator = TimedIntegrator(clock, [5.0, 2.0, 1.0, 8.0, 3.0, 4.0])
     medians = time_renders(lambda: integrator, [1, 2], repeats=3)
     assert integrator.calls == [1, 2, 1, 2, 1, 2]
-    assert len(medians) == 2 and all(m >= 0 for m in medians)
+    assert medians == [3.0, 4.0]
+
+
+def test_median_of_an_even_number_of_renders_is_the_mean_of_the_middle_two(clock):
+    # 4, 1, 8 and 2 seconds: the middle two are 2 and 4
+    integrator = TimedIntegrator(clock, [4.0, 1.0, 8.0, 2.0])
+    assert time_renders(lambda: integrator, [1], repeats=4) == [3.0]
 
 
 def test_every_render_gets_an_integrator_of_its_own():

@@ -99,6 +99,21 @@ def test_vector_repr_shows_floats():
 
 
 @pytest.mark.parametrize("make", [Vector3D, RGBColor])
+def test_vectors_and_colours_with_the_same_components_are_equal(make):
+    assert make(1.0, -2.0, 3.5) == make(1.0, -2.0, 3.5)
+    assert not make(1.0, -2.0, 3.5) != make(1.0, -2.0, 3.5)
+
+
+@pytest.mark.parametrize("make", [Vector3D, RGBColor])
+@pytest.mark.parametrize("other", [(9.0, -2.0, 3.5), (1.0, 9.0, 3.5), (1.0, -2.0, 9.0)],
+                         ids=["first", "second", "third"])
+def test_vectors_and_colours_differing_in_one_component_are_unequal(make, other):
+    # x, y, z of a vector and r, g, b of a colour all count
+    assert make(1.0, -2.0, 3.5) != make(*other)
+    assert not make(1.0, -2.0, 3.5) == make(*other)
+
+
+@pytest.mark.parametrize("make", [Vector3D, RGBColor])
 def test_star_between_two_vectors_or_colours_is_a_clear_type_error(make):
     a, b = make(1.0, 2.0, 3.0), make(4.0, 5.0, 6.0)
     with pytest.raises(TypeError, match="multiply"):
@@ -371,3 +386,17 @@ def test_get_value_returns_the_texel_under_the_direction(env_map, direction, col
 @pytest.mark.parametrize("direction, row", [((0.0, 1.0, 0.0), 0), ((0.0, -1.0, 0.0), 4)])
 def test_get_value_at_the_poles_reads_the_top_and_bottom_rows(env_map, direction, row):
     assert env_map.getValue(Vector3D(*direction)).g == pytest.approx(row + 1.0, rel=1e-2)
+
+
+# A unit direction computed with rounding can have a component just past 1: acos would
+# raise on it. It is straight up (v = 0, the top row) or straight down (v = 1, the bottom
+# row), one ulp off.
+JUST_PAST_ONE = math.nextafter(1.0, 2.0)
+
+
+@pytest.mark.parametrize("y, v, row", [(JUST_PAST_ONE, 0.0, 0), (-JUST_PAST_ONE, 1.0, 4)],
+                         ids=["up", "down"])
+def test_direction_a_rounding_error_past_a_pole_reads_the_pole_row(env_map, y, v, row):
+    direction = Vector3D(0.0, y, 0.0)
+    assert env_map.euclideanToLatLong(direction)[1] == v
+    assert env_map.getValue(direction).g == pytest.approx(row + 1.0, rel=1e-2)

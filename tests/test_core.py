@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import PyRT_Core
+from helpers import PNG_TOLERANCE, read_png
 from PyRT_Common import BLACK, RGBColor, Ray, Vector3D
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight,
                        Primitive, Scene, Sphere)
@@ -96,6 +97,26 @@ def test_camera_direction_uses_the_vertical_fov():
     assert as_tuple(d) == approx3((0.0, y / length, -1.0 / length))
 
 
+@pytest.mark.parametrize("x, y, u, v, point", [
+    # 4 x 2, tan(45) = 1, aspect 2: the point (u, v) of pixel (x, y) has
+    # x_s = 2(x + u)/4 - 1 and y_s = 1 - 2(y + v)/2, and lies at (2 x_s, y_s, -1)
+    (0, 0, 0.0, 0.0, (-2.0, 1.0, -1.0)),     # the image's top left corner
+    (1, 0, 0.0, 1.0, (-1.0, 0.0, -1.0)),     # x_s = -1/2, y_s = 0
+    (1, 0, 1.0, 0.0, (0.0, 1.0, -1.0)),      # x_s = 0, y_s = 1
+    (2, 1, 0.25, 0.75, (0.25, -0.75, -1.0)),  # x_s = 1/8, y_s = -3/4
+    (3, 1, 0.75, 0.25, (1.75, -0.25, -1.0)),  # x_s = 7/8, y_s = -1/4
+])
+def test_camera_direction_through_a_point_inside_the_pixel(x, y, u, v, point):
+    length = math.sqrt(sum(c * c for c in point))
+    d = Camera(4, 2, 90).get_direction(x, y, u, v)
+    assert as_tuple(d) == approx3(tuple(c / length for c in point))
+
+
+def test_camera_direction_through_the_pixel_centre_is_the_default():
+    camera = Camera(4, 2, 90)
+    assert as_tuple(camera.get_direction(2, 1, 0.5, 0.5)) == as_tuple(camera.get_direction(2, 1))
+
+
 def test_camera_directions_are_unit_length():
     camera = Camera(7, 5, 75)
     for y in range(5):
@@ -172,6 +193,33 @@ def test_sphere_t_min_past_the_near_hit_gives_the_far_hit():
 def test_sphere_both_hits_outside_t_range_is_a_miss():
     sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
     assert sphere.intersect(ray((0, 0, 0), (0, 0, -1), t_min=3.5, t_max=6.5)).has_hit is False
+
+
+@pytest.mark.parametrize("origin, t_min, expected", [
+    # From the origin down -z the sphere at (0, 0, -5) of radius 2 is entered at 3
+    # (z = -3, normal (0, 0, 1)) and left at 7 (z = -7, normal (0, 0, -1)).
+    ((0, 0, 0), 3.0, (3.0, -3.0, 1.0)),   # [t_min, t_max] is closed: the near hit counts
+    ((0, 0, 0), 7.0, (7.0, -7.0, -1.0)),  # past the near hit, exactly at the far one
+    ((0, 0, 0), 7.5, None),               # past both
+    ((0, 0, 0), 1e6, None),
+    # From the centre the sphere is met 2 behind (never a hit) and 2 ahead, at z = -7.
+    ((0, 0, -5), 0.0, (2.0, -7.0, -1.0)),
+    ((0, 0, -5), 2.0, (2.0, -7.0, -1.0)),
+    ((0, 0, -5), 2.5, None),
+])
+def test_sphere_hit_is_the_first_one_at_or_beyond_t_min(origin, t_min, expected):
+    scene = Scene()
+    scene.add_object(Sphere(Vector3D(0.0, 0.0, -5.0), 2.0))
+    r = ray(origin, (0, 0, -1), t_min=t_min, t_max=1e7)
+    hits = (scene.object_list[0].intersect(r), scene.closest_hit(r))
+    if expected is None:
+        assert [hit.has_hit for hit in hits] == [False, False]
+        assert scene.any_hit(r) is False
+        return
+    distance, z, normal_z = expected
+    for hit in hits:
+        assert_hit(hit, (0.0, 0.0, z), (0.0, 0.0, normal_z), distance)
+    assert scene.any_hit(r) is True
 
 
 def test_ray_starting_on_sphere_surface_does_not_hit_it_within_epsilon():
@@ -625,12 +673,28 @@ def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
     assert out[0, 1, 0] == pytest.approx(0.5 ** 0.4, rel=1e-6)
 
 
-@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
-def test_tonemap_ignores_non_finite_values_for_min_and_max(bad):
-    image = np.array([[[1.0, 2.0, 3.0], [bad, 1.5, 2.5]]])
-    out = PyRT_Core.tonemap_image(image)
+def with_non_finite(a, b, c):
+    """A 2 x 2 image whose finite values run from 1 to 3, with a, b and c in three of its
+    channels, and what the tonemapper shows: finite v as ((v - 1)/(3 - 1)) ** (1/2.5), in
+    single precision as in OpenCV; +inf as 1, the brightest; NaN and -inf as 0, the
+    darkest."""
+    image = np.array([[[1.0, 2.0, 3.0], [2.5, 1.5, 3.0]],
+                      [[a, 2.0, b], [c, 1.0, 3.0]]])
     finite = np.isfinite(image)
-    # finite pixels keep ((v - 1)/(3 - 1)) ** (1/2.5), in single precision as in OpenCV
-    expected = ((image[finite] - 1.0) / 2.0) ** 0.4
-    np.testing.assert_allclose(out[finite], expected, rtol=1e-6, atol=1e-7)
-    assert np.all(np.isfinite(out))
+    shown = np.where(np.isposinf(image), 1.0, 0.0)
+    shown[finite] = ((image[finite] - 1.0) / 2.0) ** 0.4
+    return image, shown
+
+
+@pytest.mark.parametrize("bad", [(np.nan,) * 3, (np.inf,) * 3, (-np.inf,) * 3,
+                                 (np.inf, -np.inf, np.nan)],
+                         ids=["nan", "inf", "-inf", "all"])
+def test_tonemap_shows_inf_as_brightest_and_nan_or_minus_inf_as_darkest(bad):
+    image, shown = with_non_finite(*bad)
+    np.testing.assert_allclose(PyRT_Core.tonemap_image(image), shown, rtol=1e-6, atol=1e-7)
+
+
+def test_saved_png_shows_inf_as_brightest_and_nan_or_minus_inf_as_darkest(tmp_path):
+    image, shown = with_non_finite(np.inf, -np.inf, np.nan)
+    scene_with_image(image).save_image(str(tmp_path / "picture"))
+    assert np.abs(read_png(tmp_path / "picture.png") - shown).max() <= PNG_TOLERANCE

@@ -270,6 +270,48 @@ def test_phong_miss_is_black_not_ambient(tmp_path):
     assert not image.any()
 
 
+# A light far away, low over a tilted surface. The centre ray of a 3 x 3 camera meets the
+# surface at P = (0, 0, -4), where its unit normal is n and t is a unit vector along it.
+# The light hangs at P + 12480 t + 1000 n: r = 12520 and cos = n.wi = 1000/12520 = 25/313
+# (the 312-25-313 right triangle, times 40), 4.6 degrees above the surface. Nothing lies
+# between P and the light, so Phong is the plain Lambertian kd (x) (i_a + I cos / r^2),
+# with I chosen so that I cos / r^2 = GRAZING_IRRADIANCE. A shadow ray that started below
+# the surface would cross it again after 313/25 = 12.5 times its depth, beyond the
+# stretch it skips, and find the light hidden: only the ambient term would be left. The
+# second normal has components of both signs, all different, so that a start point with
+# two components of n swapped (height (2 nx ny + nz^2) < 0) or the sign of ny wrong
+# (height 1 - 2 ny^2 < 0) lies below the surface too.
+GRAZING_IRRADIANCE = np.array([1.0, 2.0, 3.0])
+TILTS = {  # n, t
+    "normal-(0,1,1)": (Vector3D(0, 1, 1) / math.sqrt(2), Vector3D(1, 0, 0)),
+    "normal-(-2,6,3)": (Vector3D(-2, 6, 3) / 7, Vector3D(3, 0, 2) / math.sqrt(13)),
+}
+
+
+def tilted_surface(kind, n, t):
+    """The plane through P = (0, 0, -4) with normal n, or the 4 x 4 square of it centred
+    on P with sides along t and n x t (Cross(4 t, 4 n x t) = 16 n: its normal is n)."""
+    p = Vector3D(0, 0, -4)
+    if kind == "infinite-plane":
+        return InfinitePlane(p, n)
+    s1, s2 = t * 4, Cross(n, t) * 4
+    return Parallelogram(p - s1 / 2 - s2 / 2, s1, s2)
+
+
+@pytest.mark.parametrize("tilt", TILTS)
+@pytest.mark.parametrize("kind", FLOORS)
+def test_phong_far_light_grazing_a_tilted_surface_gives_the_lambertian_value(
+        tmp_path, kind, tilt):
+    n, t = TILTS[tilt]
+    light = Vector3D(0, 0, -4) + t * 12480 + n * 1000
+    intensity = RGBColor(*(GRAZING_IRRADIANCE * 12520 ** 2 / (25 / 313)))
+    scene = fov90_scene(3, 3, [(tilted_surface(kind, n, t), RGBColor(*ALBEDO))],
+                        [(light, intensity)], RGBColor(*AMBIENT))
+    expected = kd_of(ALBEDO) * (np.array(AMBIENT) + GRAZING_IRRADIANCE)
+    image = render_image(PhongIntegrator(str(tmp_path / "img")), scene)
+    assert image[1, 1] == pytest.approx(expected, rel=1e-9)
+
+
 # ------------------------------------------------------------------------------------------
 # Integrators written the way students write them
 # ------------------------------------------------------------------------------------------

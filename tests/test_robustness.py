@@ -374,36 +374,67 @@ def test_ray_through_exact_parallelogram_corner_is_a_hit(shape, a, b):
     assert as_tuple(hit.hit_point) == pytest.approx(as_tuple(corner), abs=1e-12)
 
 
-def test_ray_from_the_corner_along_the_plane_gives_no_error():
-    point, s1, s2 = SQUARE
-    parallelogram = Parallelogram(point, s1, s2)
-    for direction in (s1, s2, s1 + s2):
-        hit = parallelogram.intersect(make_ray(point, Normalize(direction), INF))
-        assert not hit.has_hit or (is_finite(hit.hit_point) and math.isfinite(hit.hit_distance))
+@pytest.mark.parametrize("shape", [SQUARE, SKEWED], ids=["square", "skewed"])
+@pytest.mark.parametrize("side", ["s1", "s2", "diagonal"])
+def test_ray_from_the_corner_along_the_plane_misses(shape, side):
+    # The ray lies in the parallelogram's plane (z = -3), so d.n = 0: like any ray
+    # parallel to the plane it misses, even where it runs across the parallelogram.
+    point, s1, s2 = shape
+    direction = {"s1": s1, "s2": s2, "diagonal": s1 + s2}[side]
+    scene = Scene()
+    scene.add_object(Parallelogram(point, s1, s2))
+    ray = make_ray(point, Normalize(direction), INF)
+    assert scene.object_list[0].intersect(ray).has_hit is False
+    assert scene.closest_hit(ray).has_hit is False
+    assert scene.any_hit(ray) is False
 
 
-PLANAR = [
-    lambda: InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0)),
-    lambda: Parallelogram(Vector3D(-1.0, 0.0, -1.0), Vector3D(0.0, 0.0, 2.0),
-                          Vector3D(2.0, 0.0, 0.0)),
-]
+PLANAR = {
+    "plane": lambda: InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0)),
+    # x and z in [-1, 1], y = 0; Cross(s1, s2) = (0, 4, 0), the same normal as the plane
+    "parallelogram": lambda: Parallelogram(Vector3D(-1.0, 0.0, -1.0),
+                                           Vector3D(0.0, 0.0, 2.0), Vector3D(2.0, 0.0, 0.0)),
+}
+# The ray below starts at (-0.5, height, 0.25) and heads along (1, -tilt, 0), a unit
+# vector to within rounding (1 + tilt^2 rounds to 1): it meets the plane y = 0 at the
+# distance height / tilt. These crossings are positive and finite; all the others lie
+# behind the ray (height and tilt of opposite signs) or overflow to infinity (height /
+# 1e-320 > 1e308).
+FAR_CROSSINGS = {(1.0, 1e-200): 1e200, (1.0, 1e-300): 1e300, (1e6, 1e-200): 1e206,
+                 (1e6, 1e-300): 1e306, (-1.0, -1e-200): 1e200, (-1.0, -1e-300): 1e300}
 
 
-@pytest.mark.parametrize("make", PLANAR, ids=["plane", "parallelogram"])
+def nearly_parallel_hit(kind, tilt, height, t_max):
+    """The distance at which the ray of the test below hits the object, or None."""
+    if tilt == 0.0:
+        return None  # parallel, d.n = 0: a miss, also for the ray lying in the plane
+    if height == 0.0:
+        return 0.0  # starts on the plane (inside the parallelogram, at a = 0.625, b = 0.25)
+    # the far crossings lie beyond t_max = 1e6 and beyond the parallelogram's edge x = 1
+    return FAR_CROSSINGS.get((height, tilt)) if kind == "plane" and t_max == INF else None
+
+
+@pytest.mark.parametrize("kind", PLANAR)
 @pytest.mark.parametrize("tilt", [0.0, 1e-200, -1e-200, 1e-300, -1e-300, 1e-320])
 @pytest.mark.parametrize("height", [1.0, 0.0, -1.0, 1e6])
 @pytest.mark.parametrize("t_max", [HUGEVALUE, INF])
-def test_parallel_and_nearly_parallel_rays_give_no_inf_or_nan(make, tilt, height, t_max):
-    # a ray at y = height, heading along x and tilted by `tilt` towards -y
-    obj = make()
+def test_parallel_and_nearly_parallel_rays_hit_only_where_they_cross_the_plane(
+        kind, tilt, height, t_max):
+    obj = PLANAR[kind]()
     scene = Scene()
     scene.add_object(obj)
     ray = make_ray(Vector3D(-0.5, height, 0.25), Vector3D(1.0, -tilt, 0.0), t_max)
+    expected = nearly_parallel_hit(kind, tilt, height, t_max)
+    assert scene.any_hit(ray) is (expected is not None)
+    # the normal is (0, 1, 0); the parallelogram's faces the ray: flipped when it heads up
+    normal = (0.0, -1.0, 0.0) if kind == "parallelogram" and tilt < 0 else (0.0, 1.0, 0.0)
     for hit in (obj.intersect(ray), scene.closest_hit(ray)):
-        if hit.has_hit:
-            assert math.isfinite(hit.hit_distance) and hit.hit_distance <= t_max
-            assert is_finite(hit.hit_point) and is_finite(hit.normal)
-    assert scene.any_hit(ray) in (True, False)
+        assert hit.has_hit is (expected is not None)
+        if expected is not None:
+            assert hit.hit_distance == pytest.approx(expected, rel=1e-15, abs=0.0)
+            assert as_tuple(hit.hit_point) == pytest.approx(
+                (expected - 0.5, 0.0, 0.25), rel=1e-15, abs=1e-9 * abs(height))
+            assert as_tuple(hit.normal) == normal
 
 
 # ------------------------------------------------------------------------------------------
@@ -459,41 +490,44 @@ def test_cornell_reference_images_are_not_trivial(cornell_references):
     assert np.all((depth >= 0.38) & (depth <= 0.7 + 1e-12))
 
 
-def phong_at_edge(x_edge, z, side_normal, side_colour):
-    """Phong of the Cornell box at the point (x_edge, 1, z) of the edge where a side wall
-    meets the ceiling, for either of the two surfaces: a side wall (normal side_normal,
-    diffuse side_colour) or the ceiling (normal (0, -1, 0), white). All three lights hang
-    below the ceiling in front of both walls, and the sphere lies below them."""
-    p = np.array([x_edge, 1.0, z])
-    colours = []
-    for normal, colour in ((side_normal, side_colour), ((0.0, -1.0, 0.0), (0.8, 0.8, 0.8))):
-        kd = np.array(colour) / math.pi
-        value = kd * np.array([1.0, 1.0, 0.3])  # kd (x) i_a
-        for light_x in (0.0, -0.5, 0.5):
-            to_light = np.array([light_x, 0.5, -1.75]) - p
-            r2 = to_light @ to_light
-            cosine = np.array(normal) @ to_light / math.sqrt(r2)
-            value = value + 0.5 * kd * cosine / r2
-        colours.append(value)
-    return colours
+def phong(point, normal, albedo, ambient, lights):
+    """The course's Phong value kd (x) (i_a + sum of I cos / r^2) at a point with the given
+    unit normal, kd = albedo / pi, for the (position, intensity) lights that reach it."""
+    total = np.array(ambient, dtype=float)
+    for position, intensity in lights:
+        to_light = np.subtract(position, point)
+        r2 = to_light @ to_light
+        total = total + np.array(intensity) * (np.dot(normal, to_light) / math.sqrt(r2)) / r2
+    return np.array(albedo) / math.pi * total
+
+
+# The Cornell box of cornell_box_scene(0.75, 2)
+CORNELL_AMBIENT = (1.0, 1.0, 0.3)
+CORNELL_LIGHTS = [((x, 0.5, -1.75), (0.5, 0.5, 0.5)) for x in (0.0, -0.5, 0.5)]
+WHITE_WALL, RED_WALL, GREEN_WALL = (0.8, 0.8, 0.8), (0.7, 0.2, 0.2), (0.2, 0.7, 0.2)
 
 
 @pytest.mark.parametrize("k", range(10))
 @pytest.mark.parametrize("side", ["left", "right"])
-def test_points_where_a_wall_meets_the_ceiling_are_lit(cornell_references, k, side):
-    # pixel (k, k) of the 40 x 40 image has x_s = (2k + 1)/40 - 1 = -y_s: its ray
+def test_where_a_wall_meets_the_ceiling_the_first_object_of_the_list_is_seen(
+        cornell_references, k, side):
+    # Pixel (k, k) of the 40 x 40 image has x_s = (2k + 1)/40 - 1 = -y_s: its ray
     # (-a, a, -1), a = -x_s tan(35 deg), meets x = -1 and y = 1 together, on the edge of the
     # left wall and the ceiling, at z = -1/a (inside the box for k <= 9); pixel (39 - k, k)
-    # is its mirror image on the right
+    # is its mirror image on the right. The two surfaces tie for the nearest hit, and
+    # PyRT keeps the first of object_list (sphere, back, floor, left, ceiling, right):
+    # the left wall before the ceiling, the ceiling before the right wall. All three
+    # lights hang below the ceiling in front of both walls, and the sphere lies below them.
     a = (1.0 - (2 * k + 1) / 40) * math.tan(math.radians(35))
     if side == "left":
         pixel = cornell_references["phong"][k, k]
-        candidates = phong_at_edge(-1.0, -1.0 / a, (1.0, 0.0, 0.0), (0.7, 0.2, 0.2))
+        expected = phong((-1.0, 1.0, -1.0 / a), (1.0, 0.0, 0.0), RED_WALL, CORNELL_AMBIENT,
+                         CORNELL_LIGHTS)
     else:
         pixel = cornell_references["phong"][k, 39 - k]
-        candidates = phong_at_edge(1.0, -1.0 / a, (-1.0, 0.0, 0.0), (0.2, 0.7, 0.2))
-    assert any(np.allclose(pixel, c, rtol=1e-6, atol=0) for c in candidates), \
-        f"pixel {pixel} is neither {candidates[0]} (wall) nor {candidates[1]} (ceiling)"
+        expected = phong((1.0, 1.0, -1.0 / a), (0.0, -1.0, 0.0), WHITE_WALL, CORNELL_AMBIENT,
+                         CORNELL_LIGHTS)
+    np.testing.assert_allclose(pixel, expected, rtol=1e-6, atol=0)
 
 
 @pytest.mark.parametrize("name", INTEGRATORS)
@@ -525,26 +559,81 @@ def render_small(scene, integrator, camera):
     return image
 
 
-@pytest.mark.parametrize("position", [
-    (0.0, -2.0, -3.0),   # on the floor of the sphere scene
-    (-4.0, -2.0, -1.0),  # on the floor's corner
-    (0.0, 0.0, -3.0),    # on the sphere, nearest the camera
+# The sphere scene, sphere_test_scene(), seen by a 5 x 5 camera with a 90 degree field of
+# view: pixel (2, y) looks along (0, y_s, -1), y_s = 1 - 2(y + 0.5)/5.
+SPHERE_AMBIENT = (0.5, 0.5, 0.5)
+SPHERE_SCENE_LIGHT = ((0.0, 5.0, 0.0), (80.0, 80.0, 80.0))
+GREY_SPHERE, GREEN_FLOOR = (0.8, 0.8, 0.8), (0.2, 0.8, 0.2)
+SPHERE_SCENE_PIXELS = {  # pixel: point seen, its normal, albedo, lit by the scene's light
+    # y_s = 0: the sphere's front
+    (2, 2): ((0.0, 0.0, -3.0), (0.0, 0.0, 1.0), GREY_SPHERE, True),
+    # y_s = -0.4: 1.16 t^2 - 10 t + 21 = 0 at t = 105/29, P = (0, -42, -105)/29, normal
+    # (P - (0, 0, -5))/2 = (0, -21, 20)/29; the light at (0, 5, 0) is behind the surface
+    # there: n.(L - P) = (-21 * 187 + 20 * 105)/29^2 < 0
+    (2, 3): ((0.0, -42 / 29, -105 / 29), (0.0, -21 / 29, 20 / 29), GREY_SPHERE, False),
+    # y_s = -0.8: passes the sphere's centre 4/sqrt(1.64) = 3.1 away and meets the floor
+    # y = -2 at t = 2.5
+    (2, 4): ((0.0, -2.0, -2.5), (0.0, 1.0, 0.0), GREEN_FLOOR, True),
+}
+
+
+@pytest.mark.parametrize("position, lit", [
+    # on the floor: it lights the sphere at (2, 3), n.(L - P) = (21*16 + 20*18)/29^2 > 0,
+    # and not the floor; for (2, 2) it lies level with the surface (cos = 0)
+    ((0.0, -2.0, -3.0), [(2, 3)]),
+    # on the floor's corner: it lights the sphere at (2, 2), L - P = (-4, -2, 2), and at
+    # (2, 3), n.(L - P) = (21*16 + 20*76)/29^2 > 0; not the floor
+    ((-4.0, -2.0, -1.0), [(2, 2), (2, 3)]),
+    # on the sphere, at the very point (2, 2) sees: it lights the floor, L - P = (0, 2,
+    # -0.5), a segment that reaches the sphere only at the light; not the sphere
+    ((0.0, 0.0, -3.0), [(2, 4)]),
 ])
-def test_point_light_on_a_surface_of_the_sphere_scene(tmp_path, position):
+def test_point_light_on_a_surface_of_the_sphere_scene_lights_only_the_others(
+        tmp_path, position, lit):
+    extra = (position, (5.0, 5.0, 5.0))
     scene = sphere_test_scene()
-    scene.add_point_light_sources(PointLight(Vector3D(*position), RGBColor(5.0, 5.0, 5.0)))
-    render_small(scene, PhongIntegrator(str(tmp_path / "img")), Camera(16, 16, 60))
+    scene.add_point_light_sources(PointLight(Vector3D(*position), RGBColor(*extra[1])))
+    image = render_small(scene, PhongIntegrator(str(tmp_path / "img")), Camera(5, 5, 90))
+    for (x, y), (point, normal, albedo, scene_light) in SPHERE_SCENE_PIXELS.items():
+        lights = ([SPHERE_SCENE_LIGHT] if scene_light else []) + ([extra] if (x, y) in lit else [])
+        expected = phong(point, normal, albedo, SPHERE_AMBIENT, lights)
+        np.testing.assert_allclose(image[y, x], expected, rtol=1e-9, err_msg=f"{(x, y)}")
 
 
-@pytest.mark.parametrize("position", [
-    (0.0, 0.0, -2.75),   # the centre of the back wall
-    (-1.0, -1.0, -1.5),  # on the edge between the floor and the left wall
-    (1.0, 1.0, -2.75),   # on the corner of back wall, ceiling and right wall
+# The Cornell box seen by a 7 x 7 camera with a 90 degree field of view: pixel (x, y) looks
+# along (x_s, y_s, -1) with x_s, y_s in {0, +-2/7, +-4/7, +-6/7}. The sphere hides none of
+# these points, and all three lights reach them but the floor's, straight under the
+# sphere: there the middle light is hidden, the side ones pass the sphere's centre
+# sqrt(0.1) = 0.32 away.
+CORNELL_PIXELS = {  # pixel: point seen, its normal, albedo, lights that reach it
+    (3, 0): ((0.0, 1.0, -7 / 6), (0.0, -1.0, 0.0), WHITE_WALL, CORNELL_LIGHTS),  # ceiling
+    (3, 2): ((0.0, 11 / 14, -2.75), (0.0, 0.0, 1.0), WHITE_WALL, CORNELL_LIGHTS),  # back
+    (3, 5): ((0.0, -1.0, -1.75), (0.0, 1.0, 0.0), WHITE_WALL, CORNELL_LIGHTS[1:]),  # floor
+    (1, 3): ((-1.0, 0.0, -1.75), (1.0, 0.0, 0.0), RED_WALL, CORNELL_LIGHTS),  # left
+    (5, 3): ((1.0, 0.0, -1.75), (-1.0, 0.0, 0.0), GREEN_WALL, CORNELL_LIGHTS),  # right
+}
+
+
+@pytest.mark.parametrize("position, lit", [
+    # the centre of the back wall: it lights the ceiling, floor and side walls (each
+    # segment to it passes the sphere's centre at least 0.53 away), not the back wall
+    ((0.0, 0.0, -2.75), [(3, 0), (3, 5), (1, 3), (5, 3)]),
+    # the edge of the floor and the left wall: it lights the ceiling, back and right wall
+    # (passing the sphere at least 0.45 away), not the floor or the left wall
+    ((-1.0, -1.0, -1.5), [(3, 0), (3, 2), (5, 3)]),
+    # the corner of the back wall, the ceiling and the right wall: it lights the floor and
+    # the left wall (passing the sphere 1/sqrt(3) away), none of its three walls
+    ((1.0, 1.0, -2.75), [(3, 5), (1, 3)]),
 ])
-def test_point_light_on_a_cornell_wall(tmp_path, position):
+def test_point_light_on_a_cornell_wall_lights_only_the_others(tmp_path, position, lit):
+    extra = (position, (0.5, 0.5, 0.5))
     scene = cornell_box_scene(0.75, 2)
-    scene.add_point_light_sources(PointLight(Vector3D(*position), RGBColor(0.5, 0.5, 0.5)))
-    render_small(scene, PhongIntegrator(str(tmp_path / "img")), Camera(16, 16, 70))
+    scene.add_point_light_sources(PointLight(Vector3D(*position), RGBColor(*extra[1])))
+    image = render_small(scene, PhongIntegrator(str(tmp_path / "img")), Camera(7, 7, 90))
+    for (x, y), (point, normal, albedo, lights) in CORNELL_PIXELS.items():
+        expected = phong(point, normal, albedo, CORNELL_AMBIENT,
+                         lights + ([extra] if (x, y) in lit else []))
+        np.testing.assert_allclose(image[y, x], expected, rtol=1e-9, err_msg=f"{(x, y)}")
 
 
 @pytest.mark.parametrize("width, height", [(1, 21), (21, 1), (1, 1)])
@@ -555,10 +644,22 @@ def test_one_pixel_wide_or_tall_image_looks_through_the_centre(tmp_path, width, 
     assert image[height // 2, width // 2] == pytest.approx([0.4, 0.4, 0.4], abs=1e-12)
 
 
-@pytest.mark.parametrize("width, height", [(1, 9), (9, 1)])
-def test_one_pixel_wide_or_tall_image_renders_phong(tmp_path, width, height):
-    render_small(sphere_test_scene(), PhongIntegrator(str(tmp_path / "img")),
-                 Camera(width, height, 60))
+# The middle pixel of an image with odd sides sees the sphere's front (0, 0, -3), normal
+# (0, 0, 1); the light at (0, 5, 0) is (0, 5, 3) away: r^2 = 34, cos = 3/sqrt(34). Phong
+# gives 0.8/pi (0.5 + 80 * 3/34^1.5) = 0.4356 in every channel.
+SPHERE_FRONT_PHONG = phong((0.0, 0.0, -3.0), (0.0, 0.0, 1.0), GREY_SPHERE, SPHERE_AMBIENT,
+                           [SPHERE_SCENE_LIGHT])
+
+
+def test_phong_of_the_sphere_front_is_the_value_worked_out_by_hand():
+    assert SPHERE_FRONT_PHONG == pytest.approx([0.4356] * 3, abs=1e-4)
+
+
+@pytest.mark.parametrize("width, height", [(1, 9), (9, 1), (1, 1)])
+def test_one_pixel_wide_or_tall_image_shades_the_centre_with_phong(tmp_path, width, height):
+    image = render_small(sphere_test_scene(), PhongIntegrator(str(tmp_path / "img")),
+                         Camera(width, height, 60))
+    np.testing.assert_allclose(image[height // 2, width // 2], SPHERE_FRONT_PHONG, rtol=1e-9)
 
 
 def test_tiny_field_of_view_sees_only_the_sphere_front(tmp_path):
@@ -578,10 +679,10 @@ def test_extreme_field_of_view_centre_pixel_sees_the_sphere_front(tmp_path, fov)
 
 
 @pytest.mark.parametrize("fov", [1e-6, 179.999])
-def test_extreme_field_of_view_renders_phong(tmp_path, fov):
+def test_extreme_field_of_view_centre_pixel_shades_the_sphere_front(tmp_path, fov):
     image = render_small(sphere_test_scene(), PhongIntegrator(str(tmp_path / "img")),
                          Camera(9, 9, fov))
-    assert image[4, 4].all()  # the sphere's front is lit
+    np.testing.assert_allclose(image[4, 4], SPHERE_FRONT_PHONG, rtol=1e-9)
 
 
 def test_field_of_view_close_to_180_degrees_has_finite_unit_directions():
