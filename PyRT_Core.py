@@ -11,6 +11,7 @@ distance or None; only the nearest hit is turned into a ``HitData`` (by ``_hit_d
 import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from math import hypot, isfinite, tan
 from pathlib import Path
 
@@ -32,6 +33,24 @@ EDGE_TOLERANCE = 1e-9
 # of the Cornell box lie exactly on the image's diagonals), rounding would otherwise pick
 # either, one way on one machine and the other way on the next; so the first one wins.
 TIE_SHRINK = 1.0 - 1e-10
+# A shadow ray stops this fraction short of its light, so a light lying exactly on a
+# surface is not hidden by that surface.
+SHADOW_EPSILON = 1e-6
+# Shadow rays start this far above the surface, relative to the size of the hit point's
+# coordinates: far above the rounding error of a hit point (about 1e-16 relative), far below
+# any detail of the scene, and the same at every scale of the scene.
+OFFSET_SCALE = 2.0 ** -32
+# Clearances, relative to the size of the scene, that let visible_lights leave an object
+# out of the shadow rays towards a light (see _may_block): the light must be this far from
+# the object's plane, and the other object this far on the light's side of it, or touch it.
+CLEARANCE = 1e-4
+TOUCHING = 1e-12
+# any_hit: a ray from a hit point whose end lies this close to a point light (relative to
+# the scene's size) is a shadow ray towards that light; and shadow rays that ignore this
+# first stretch of their way (t_min) do not see a plane they start on, whatever rounding
+# made of their start point.
+LIGHT_MATCH = 1e-9
+SHADOW_T_MIN = 1e-7
 
 
 # ------------------------------------------------------------------------------------------
@@ -90,7 +109,10 @@ def _unit(d):
 
 class _Shape:
     """A geometric attribute of a primitive or camera: assigning it re-derives the cached
-    constants of its owner (so ``sphere.radius = 3`` moves the surface, as expected)."""
+    constants of its owner (so ``sphere.radius = 3`` moves the surface, as expected) and
+    counts the change, so that scenes know that what they worked out from it is out of date."""
+
+    changes = 0
 
     def __set_name__(self, owner, name):
         self.slot = "_" + name
@@ -101,6 +123,7 @@ class _Shape:
     def __set__(self, obj, value):
         setattr(obj, self.slot, value)
         obj._derive()
+        _Shape.changes += 1
 
 
 # ------------------------------------------------------------------------------------------
@@ -119,6 +142,10 @@ class Scene:
         self.object_list = []
         self.pointLights = []
         self.i_a = RGBColor(0.0, 0.0, 0.0)
+        self._paths = None  # see _shadow_paths
+        self._still = False  # see unchanged
+        self._last_hit = (None,)  # see closest_hit and _blockers
+        self._next_light = 0  # see _blockers
 
     def set_ambient(self, i_a):
         self.i_a = _check_color("Scene.set_ambient", "i_a", i_a)
@@ -148,16 +175,19 @@ class Scene:
     # repeat _unit's unit-length test inline (camera and shadow rays pass it) so that the
     # common case costs no function call.
     def any_hit(self, ray):
-        """True when the ray hits any object at a distance in [ray.t_min, ray.t_max]."""
+        """True when the ray hits any object at a distance in [ray.t_min, ray.t_max].
+
+        A shadow ray of the Phong model, from the hit point that closest_hit returned last
+        to a point light, tests only the objects that can be in its way (_blockers)."""
         o, d = ray.o, ray.d
         dx, dy, dz = d.x, d.y, d.z
         if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:  # also catches NaN
             dx, dy, dz = _unit(d)
-        return self.occluded(o.x, o.y, o.z, dx, dy, dz, ray.t_min, ray.t_max)
-
-    def occluded(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
-        """any_hit for a ray given as floats with a unit direction: stops at the first hit."""
-        for obj in self.object_list:
+        ox, oy, oz, t_min, t_max = o.x, o.y, o.z, ray.t_min, ray.t_max
+        objects = self.object_list
+        if o is self._last_hit[0]:
+            objects = self._blockers(ox, oy, oz, dx, dy, dz, t_min, t_max)
+        for obj in objects:
             if obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max) is not None:
                 return True
         return False
@@ -181,8 +211,90 @@ class Scene:
         if nearest is None:
             return HitData()
         hit = nearest._hit_data(ox, oy, oz, dx, dy, dz, distance)
-        hit.primitive_index = objects.index(nearest)
+        hit.primitive_index = k = objects.index(nearest)
+        p = hit.hit_point
+        self._last_hit = (p, k, p.x, p.y, p.z)  # for the shadow rays that may follow
         return hit
+
+    def visible_lights(self, hit):
+        """The point lights that light the point of ``hit`` (a HitData of closest_hit): for
+        each light in front of the surface with nothing in between, (light, wi, r2), wi the
+        unit direction from the point to the light and r2 its squared distance.
+
+        A shadow ray towards each light decides whether something is in between. It starts
+        just above the surface, on the light's side, and ignores the first `offset` of its
+        way, which skips the surface itself and, on an edge where two walls meet, the other
+        wall; both scale with the scene, where a fixed t_min would be too large for tiny
+        scenes and too small for huge ones. It tests only the objects that can be in its
+        way (see _shadow_paths): in the Cornell box, only the sphere."""
+        p, n = hit.hit_point, hit.normal
+        px, py, pz, nx, ny, nz = p.x, p.y, p.z, n.x, n.y, n.z
+        offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + hit.hit_distance)
+        sx, sy, sz = px + nx * offset, py + ny * offset, pz + nz * offset
+        seen = []
+        for light, x, y, z, blockers in self._shadow_paths(hit.primitive_index):
+            lx, ly, lz = x - px, y - py, z - pz
+            # The light's height above the surface: at or below `offset` it is behind the
+            # surface or lies on it, and lights no part of it.
+            if lx * nx + ly * ny + lz * nz <= offset:
+                continue
+            r2 = lx * lx + ly * ly + lz * lz
+            distance = sqrt(r2)
+            wx, wy, wz = lx / distance, ly / distance, lz / distance
+            t_max = distance * (1.0 - SHADOW_EPSILON) - offset
+            for obj in blockers:
+                if obj._distance(sx, sy, sz, wx, wy, wz, offset, t_max) is not None:
+                    break
+            else:
+                seen.append((light, Vector3D(wx, wy, wz), r2))
+        return seen
+
+    @contextmanager
+    def unchanged(self):
+        """A with-block during which the scene does not change, as during a render: what
+        visible_lights works out from the scene is checked once, on entry, instead of at
+        every call."""
+        self._shadow_paths(-1)
+        self._still = True
+        try:
+            yield self
+        finally:
+            self._still = False
+
+    def _shadow_paths(self, k):
+        """For each point light, (light, its x, y, z, the objects that can lie between it
+        and a point of object k): _ShadowPaths, worked out for the scene as it is; every
+        object when k is not an index of object_list."""
+        paths = self._paths
+        if not self._still and (paths is None or not paths.fit(self)):
+            paths = self._paths = _ShadowPaths(self)
+        if 0 <= k < len(paths.per_object):
+            return paths.per_object[k]
+        return paths.unculled
+
+    def _blockers(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
+        """The objects any_hit tests for a ray from the point of the last closest_hit: those
+        that can lie in its way when the ray ends at a point light (_ShadowPaths), all of
+        them otherwise.
+
+        The ray must start at that very point, unchanged, and ignore its first stretch
+        (t_min) as shadow rays do, longer than the rounding error of where it crosses a
+        plane it starts on; its end must be a light's position to within rounding."""
+        _, k, x, y, z = self._last_hit
+        lights = self._shadow_paths(k)
+        paths = self._paths
+        if ox != x or oy != y or oz != z or not t_min >= paths.t_min:
+            return self.object_list
+        ex, ey, ez = ox + dx * t_max, oy + dy * t_max, oz + dz * t_max
+        near = paths.near
+        # Shadow rays come light after light: try the one after the last one found first.
+        start = self._next_light
+        for i in range(start, start + len(lights)):
+            _, lx, ly, lz, blockers = lights[i % len(lights)]
+            if -near <= lx - ex <= near and -near <= ly - ey <= near and -near <= lz - ez <= near:
+                self._next_light = i + 1
+                return blockers
+        return self.object_list
 
     def set_pixel(self, pixel_val, x, y):
         """Stores the RGBColor pixel_val at column x, row y of rendered_image."""
@@ -224,6 +336,99 @@ class Scene:
             _write_atomically(_with_suffix(base, ".png"), lambda f: plt.imsave(
                 f, pixels, format="png", pil_kwargs={"compress_level": 1}))
             linear.result()
+
+
+class _ShadowPaths:
+    """What visible_lights and any_hit work out once about the shadow rays of a scene: for
+    every object k and point light, the objects that can lie between the light and a point
+    of k (_may_block), with the scene's size for the clearances that decide it."""
+
+    __slots__ = ("changes", "objects", "lights", "per_object", "unculled", "near", "t_min")
+
+    def __init__(self, scene):
+        objects, lights = scene.object_list, scene.pointLights
+        self.changes, self.objects, self.lights = _Shape.changes, list(objects), _lights(lights)
+        scale = _scene_size(objects, lights)
+        self.per_object = [[(light, x, y, z, tuple(obj for obj in objects
+                                                   if _may_block(obj, k, light.pos, scale)))
+                            for light, x, y, z in self.lights] for k in objects]
+        self.unculled = [(light, x, y, z, tuple(objects)) for light, x, y, z in self.lights]
+        self.near = LIGHT_MATCH * scale
+        self.t_min = SHADOW_T_MIN * scale
+
+    def fit(self, scene):
+        """Whether the scene is still the one these paths were worked out for: the same
+        objects and lights, none of them moved since."""
+        return (self.changes == _Shape.changes and self.objects == scene.object_list
+                and self.lights == _lights(scene.pointLights))
+
+
+def _lights(lights):
+    return [(light, light.pos.x, light.pos.y, light.pos.z) for light in lights]
+
+
+def _scene_size(objects, lights):
+    """The largest coordinate of the scene's lights and built-in objects, at least the
+    distance 1 from the camera: the scale of the clearances of _may_block."""
+    size = 0.0
+    for obj in objects:
+        if type(obj) is Sphere:
+            c = obj.origin
+            size = max(size, abs(c.x), abs(c.y), abs(c.z), obj.radius)
+        elif type(obj) is Parallelogram:
+            for corner in _corners(obj):
+                size = max(size, *map(abs, corner))
+    for light in lights:
+        size = max(size, abs(light.pos.x), abs(light.pos.y), abs(light.pos.z))
+    return size or 1.0
+
+
+def _corners(parallelogram):
+    p, s1, s2 = parallelogram.point, parallelogram.s1, parallelogram.s2
+    return [(p.x + a * s1.x + b * s2.x, p.y + a * s1.y + b * s2.y, p.z + a * s1.z + b * s2.z)
+            for a, b in ((0, 0), (1, 0), (0, 1), (1, 1))]
+
+
+def _may_block(obj, blocked, light_pos, scale):
+    """False when obj cannot lie between the point light at light_pos and a point of the
+    object `blocked` from which visible_lights traces a shadow ray; True when it may.
+
+    A plane (of an InfinitePlane or Parallelogram) cannot cut a segment whose two ends lie
+    on the same side of it, nor touch it but at an end that lies on it. So obj is left out
+    when it is flat, the light lies clearly on one side of its plane (by CLEARANCE times
+    the scene's size) and `blocked` lies entirely on that side: clearly (a sphere, or a
+    parallelogram's corners), or touching the plane (a wall meeting obj at an edge) with a
+    normal that, turned towards the light, does not point through obj's plane, so that a
+    shadow ray starting just above `blocked` starts on the light's side of obj too.
+    obj itself is left out when flat, the light clear of its plane: a shadow ray leaving a
+    plane cannot meet it again."""
+    if type(obj) not in (InfinitePlane, Parallelogram):
+        return True  # a sphere, or an object of your own: always tested
+    n, height = obj.normal, obj._k[3]
+    side = 1.0 if Dot(light_pos, n) > height else -1.0
+
+    def above(x, y, z):  # the height of (x, y, z) over obj's plane, on the light's side
+        return side * (x * n.x + y * n.y + z * n.z - height)
+
+    if above(light_pos.x, light_pos.y, light_pos.z) < CLEARANCE * scale:
+        return True
+    if obj is blocked:
+        return False
+    if type(blocked) is Sphere:
+        c = blocked.origin
+        return above(c.x, c.y, c.z) - blocked.radius < CLEARANCE * scale
+    if type(blocked) is not Parallelogram:
+        return True
+    lowest = min(above(*corner) for corner in _corners(blocked))
+    if lowest >= CLEARANCE * scale:
+        return False
+    if lowest < -TOUCHING * scale:
+        return True  # blocked reaches across obj's plane
+    m = blocked.normal
+    facing = Dot(m, light_pos) - blocked._k[3]  # the light's height over blocked's plane
+    if abs(facing) < CLEARANCE * scale:
+        return True
+    return side * Dot(m, n) * (1.0 if facing > 0.0 else -1.0) < 0.0
 
 
 def tonemap_image(image, gamma=2.5):
@@ -518,7 +723,7 @@ class Lambertian(BRDF):
         self.kd = diffuse_colour / pi
 
     def get_value(self, wi, wo, normal):
-        cos_theta = Dot(normal, wi)
+        cos_theta = normal.x * wi.x + normal.y * wi.y + normal.z * wi.z  # Dot, inlined
         if cos_theta > 0.0:
             kd = self.kd
             return RGBColor(kd.r * cos_theta, kd.g * cos_theta, kd.b * cos_theta)

@@ -18,13 +18,6 @@ __all__ = _common_names + [
 ]
 
 INFINITY = float("inf")
-# A shadow ray stops this fraction short of its light, so a light lying exactly on a
-# surface is not hidden by that surface.
-SHADOW_EPSILON = 1e-6
-# Secondary rays start this far above the surface, relative to the size of the hit point's
-# coordinates: far above the rounding error of a hit point (about 1e-16 relative), far below
-# any detail of the scene, and the same at every scale of the scene.
-OFFSET_SCALE = 2.0 ** -32
 
 
 # ------------------------------------------------------------------------------------------
@@ -199,31 +192,11 @@ class PhongIntegrator(Integrator):
             raise ValueError(f"PhongIntegrator: object {hit.primitive_index} of the scene has "
                              "no BRDF; call obj.set_BRDF(Lambertian(RGBColor(...))) on it")
         kd, i_a = brdf.kd, scene.i_a
-        r, g, b = kd.r * i_a.r, kd.g * i_a.g, kd.b * i_a.b
-        p, n = hit.hit_point, hit.normal
-        px, py, pz, nx, ny, nz = p.x, p.y, p.z, n.x, n.y, n.z
-        d = ray.d
+        r, g, b = kd.r * i_a.r, kd.g * i_a.g, kd.b * i_a.b  # kd (x) i_a
+        d, n = ray.d, hit.normal
         wo = Vector3D(-d.x, -d.y, -d.z)
-        offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + hit.hit_distance)
-        # Shadow rays start just above the surface (on the light's side of it) and ignore
-        # the first `offset` of their way, which skips the surface itself and, on an edge
-        # where two walls meet, the other wall. Both scale with the scene, where a fixed
-        # t_min would be too large for tiny scenes and too small for huge ones.
-        sx, sy, sz = px + nx * offset, py + ny * offset, pz + nz * offset
-        for light in scene.pointLights:
-            pos = light.pos
-            lx, ly, lz = pos.x - px, pos.y - py, pos.z - pz
-            # The light's height above the surface: at or below `offset` it is behind the
-            # surface or lies on it, and lights no part of it.
-            if lx * nx + ly * ny + lz * nz <= offset:
-                continue
-            r2 = lx * lx + ly * ly + lz * lz
-            distance = sqrt(r2)
-            wx, wy, wz = lx / distance, ly / distance, lz / distance
-            if scene.occluded(sx, sy, sz, wx, wy, wz, offset,
-                              distance * (1.0 - SHADOW_EPSILON) - offset):
-                continue
-            f = brdf.get_value(Vector3D(wx, wy, wz), wo, n)
+        for light, wi, r2 in scene.visible_lights(hit):
+            f = brdf.get_value(wi, wo, n)
             intensity = light.intensity
             r += intensity.r * f.r / r2
             g += intensity.g * f.g / r2

@@ -183,6 +183,7 @@ def sampled_row(integrator, y, samples):
 def rendered_blocks(integrator, workers, samples, progress):
     """Yields an iterator over (first row, rows) blocks that together make the image, in
     any order, rendered by this process and by worker processes; shows a progress bar.
+    The scene does not change meanwhile (Scene.unchanged).
 
     On Ctrl+C it stops the workers, saves the rows stored so far in the scene's image as
     <filename>_partial and re-raises. When all is done it reports NaN or infinite pixels."""
@@ -198,7 +199,8 @@ def rendered_blocks(integrator, workers, samples, progress):
             bar.update(rows.shape[0] * width)
 
     try:
-        yield counted()
+        with scene.unchanged():
+            yield counted()
     except KeyboardInterrupt:
         blocks.close()  # stops the worker processes, wherever Ctrl+C struck
         bar.close()

@@ -7,10 +7,12 @@ import cv2
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 import PyRT_Core
 from helpers import PNG_TOLERANCE, read_png
-from PyRT_Common import BLACK, RGBColor, Ray, Vector3D
+from PyRT_Common import BLACK, Cross, Length, Normalize, RGBColor, Ray, Vector3D
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight,
                        Primitive, Scene, Sphere)
 
@@ -556,6 +558,164 @@ def test_set_pixel_writes_row_y_column_x():
     expected = np.zeros((2, 3, 3))
     expected[1, 2] = (0.25, 0.5, 0.75)
     np.testing.assert_array_equal(scene.rendered_image, expected)
+
+
+# ------------------------------------------------------------------------------------------
+# Shadow rays: visible_lights, and any_hit from a hit point to a light
+# ------------------------------------------------------------------------------------------
+RIGHT, LEFT = Vector3D(1.0, 1.0, 0.0), Vector3D(-1.0, 1.0, 0.0)
+
+
+def floor_and_wall():
+    """A floor y = 0 (x, z in [-2, 2]) with a wall x = 0 standing on it (y in [0, 2]), a
+    light on either side of the wall, 1 above the floor."""
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(-2.0, 0.0, 2.0), Vector3D(4.0, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -4.0)))
+    scene.add_object(Parallelogram(Vector3D(0.0, 0.0, -2.0), Vector3D(0.0, 2.0, 0.0),
+                                   Vector3D(0.0, 0.0, 4.0)))
+    for position in (RIGHT, LEFT):
+        scene.add_point_light_sources(PointLight(position, RGBColor(1.0, 1.0, 1.0)))
+    return scene
+
+
+def floor_hit(scene):
+    """The floor seen at (0.5, 0, 0), right of the wall, from (0.5, 3, 0) above it."""
+    hit = scene.closest_hit(ray((0.5, 3.0, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (0.5, 0.0, 0.0))
+    return hit
+
+
+def student_shadow_ray(hit, light):
+    """A shadow ray as the course's students write it: from the hit point to the light."""
+    to_light = light.pos - hit.hit_point
+    return Ray(hit.hit_point, Normalize(to_light), Length(to_light))
+
+
+def test_visible_lights_are_those_in_front_with_nothing_in_between():
+    # From (0.5, 0, 0) the right light is (0.5, 1, 0) away: r2 = 1.25, wi = (0.5, 1, 0)/r.
+    # The segment to the left light, (0.5, 0, 0) + s (-1.5, 1, 0), crosses the wall x = 0 at
+    # s = 1/3, at height 1/3: the wall hides it.
+    scene = floor_and_wall()
+    [(light, wi, r2)] = scene.visible_lights(floor_hit(scene))
+    assert light is scene.pointLights[0]
+    assert type(wi) == Vector3D
+    assert as_tuple(wi) == approx3((0.5 / math.sqrt(1.25), 1.0 / math.sqrt(1.25), 0.0))
+    assert r2 == pytest.approx(1.25, rel=1e-15)
+
+
+def test_student_shadow_rays_from_a_hit_point_see_the_same_lights():
+    scene = floor_and_wall()
+    hit = floor_hit(scene)
+    assert [scene.any_hit(student_shadow_ray(hit, light)) for light in scene.pointLights] == [
+        False, True]
+
+
+def test_a_light_moved_in_place_is_seen_from_its_new_position():
+    scene = floor_and_wall()
+    assert len(scene.visible_lights(floor_hit(scene))) == 1
+    scene.pointLights[1].pos.x = 0.75  # the left light moves right of the wall
+    hit = floor_hit(scene)
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights
+    assert not scene.any_hit(student_shadow_ray(hit, scene.pointLights[1]))
+
+
+def test_objects_added_or_reshaped_after_a_query_cast_their_shadows():
+    # A ball at c = (1.05, 0.5, 0) passes the segment from (0.5, 0, 0) to the right light,
+    # direction (0.5, 1, 0)/sqrt(1.25), at sqrt(|c - p|^2 - ((c - p).u)^2) = sqrt(0.5525 -
+    # 0.775^2/1.25) = 0.268: a radius of 0.1 leaves the light in view, one of 0.3 hides it.
+    scene = floor_and_wall()
+    assert len(scene.visible_lights(floor_hit(scene))) == 1
+    ball = Sphere(Vector3D(1.05, 0.5, 0.0), 0.1)
+    scene.object_list.append(ball)
+    hit = floor_hit(scene)
+    assert len(scene.visible_lights(hit)) == 1
+    assert not scene.any_hit(student_shadow_ray(hit, scene.pointLights[0]))
+    ball.radius = 0.3
+    hit = floor_hit(scene)
+    assert scene.visible_lights(hit) == []
+    assert scene.any_hit(student_shadow_ray(hit, scene.pointLights[0]))
+
+
+class PlainParallelogram(Parallelogram):
+    """A Parallelogram PyRT does not know as one of its own: every shadow ray tests it."""
+
+
+class PlainSphere(Sphere):
+    """A Sphere PyRT does not know as one of its own: every shadow ray tests it."""
+
+
+boxes = st.tuples(*[st.floats(-3.0, 3.0)] * 3)
+
+
+WHITE_LIGHT = RGBColor(1.0, 1.0, 1.0)
+
+
+def plain_copy(scene):
+    """The scene with its parallelograms and spheres turned into the plain subclasses."""
+    copy = Scene()
+    for obj in scene.object_list:
+        if isinstance(obj, Sphere):
+            copy.add_object(PlainSphere(obj.origin, obj.radius))
+        else:
+            copy.add_object(PlainParallelogram(obj.point, obj.s1, obj.s2))
+    for light in scene.pointLights:
+        copy.add_point_light_sources(PointLight(light.pos, light.intensity))
+    return copy
+
+
+@st.composite
+def scenes_with_lights(draw):
+    """A random scene of parallelograms, spheres and lights, and its plain copy."""
+    sides = st.tuples(*[st.floats(-3.0, 3.0)] * 3).filter(
+        lambda v: sum(c * c for c in v) > 0.25)
+    flats = draw(st.lists(st.tuples(boxes, sides, sides).filter(
+        lambda f: Length(Cross(Vector3D(*f[1]), Vector3D(*f[2]))) > 0.3), max_size=5))
+    scene = Scene()
+    for point, s1, s2 in flats:
+        scene.add_object(Parallelogram(Vector3D(*point), Vector3D(*s1), Vector3D(*s2)))
+    for centre, radius in draw(st.lists(st.tuples(boxes, st.floats(0.1, 1.0)), max_size=2)):
+        scene.add_object(Sphere(Vector3D(*centre), radius))
+    for position in draw(st.lists(boxes, min_size=1, max_size=3)):
+        scene.add_point_light_sources(PointLight(Vector3D(*position), WHITE_LIGHT))
+    return [scene, plain_copy(scene)]
+
+
+@st.composite
+def cornell_boxes_with_lights(draw):
+    """The Cornell box of some size, its walls meeting at their edges, with lights in it
+    and around it, and its plain copy."""
+    from AppRenderer import cornell_box_scene
+    side = draw(st.floats(0.5, 4.0))
+    scene = cornell_box_scene(draw(st.floats(0.0, 2.0)), side)
+    scene.pointLights.clear()
+    for position in draw(st.lists(st.tuples(*[st.floats(-0.6 * side, 0.6 * side)] * 2,
+                                            st.floats(-3.0 * side, 0.0)),
+                                  min_size=1, max_size=3)):
+        scene.add_point_light_sources(PointLight(Vector3D(*position), WHITE_LIGHT))
+    return [scene, plain_copy(scene)]
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.one_of(scenes_with_lights(), cornell_boxes_with_lights()),
+       st.lists(st.tuples(boxes, boxes), min_size=1, max_size=4))
+def test_shadow_rays_that_leave_objects_out_see_what_testing_all_would(copies, rays):
+    own, plain = copies
+    for origin, target in rays:
+        direction = Vector3D(*target) - Vector3D(*origin)
+        assume(Length(direction) > 0.1)
+        camera_ray = Ray(Vector3D(*origin), direction)
+        hits = [scene.closest_hit(camera_ray) for scene in copies]
+        if not hits[0].has_hit:
+            continue
+        assert [light for light, _, _ in own.visible_lights(hits[0])] == [
+            own.pointLights[plain.pointLights.index(light)]
+            for light, _, _ in plain.visible_lights(hits[1])]
+        for mine, theirs in zip(own.pointLights, plain.pointLights):
+            if mine.pos == hits[0].hit_point:
+                continue  # a light right on the hit point gives no direction to trace
+            assert own.any_hit(student_shadow_ray(hits[0], mine)) == plain.any_hit(
+                student_shadow_ray(hits[1], theirs))
 
 
 # ------------------------------------------------------------------------------------------
