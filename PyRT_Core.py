@@ -142,7 +142,7 @@ class Scene:
         self.object_list = []
         self.pointLights = []
         self.i_a = RGBColor(0.0, 0.0, 0.0)
-        self._paths = None  # see _shadow_paths
+        self._known = None  # see _sightlines
         self._still = False  # see unchanged
         self._last_hit = (None,)  # see closest_hit and _blockers
         self._next_light = 0  # see _blockers
@@ -173,7 +173,9 @@ class Scene:
 
     # any_hit and closest_hit run for every ray: they read the ray once into floats, and
     # repeat _unit's unit-length test inline (camera and shadow rays pass it) so that the
-    # common case costs no function call.
+    # common case costs no function call. They test the objects of a _Sightlines list:
+    # each object with the cone, seen from the ray's origin, that holds it; a direction
+    # outside the cone cannot hit the object, which costs a dot product to find out.
     def any_hit(self, ray):
         """True when the ray hits any object at a distance in [ray.t_min, ray.t_max].
 
@@ -184,11 +186,14 @@ class Scene:
         if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:  # also catches NaN
             dx, dy, dz = _unit(d)
         ox, oy, oz, t_min, t_max = o.x, o.y, o.z, ray.t_min, ray.t_max
-        objects = self.object_list
-        if o is self._last_hit[0]:
-            objects = self._blockers(ox, oy, oz, dx, dy, dz, t_min, t_max)
-        for obj in objects:
-            if obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max) is not None:
+        last = self._last_hit
+        if o is last[0]:
+            entries = self._blockers(last, ox, oy, oz, dx, dy, dz, t_min, t_max)
+        else:
+            entries = (self._known if self._still else self._sightlines()).anywhere
+        for obj, _, ux, uy, uz, reach in entries:
+            if dx * ux + dy * uy + dz * uz >= reach and (
+                    obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max) is not None):
                 return True
         return False
 
@@ -201,19 +206,22 @@ class Scene:
             dx, dy, dz = _unit(d)
         ox, oy, oz = o.x, o.y, o.z
         t_min, t_max = ray.t_min, ray.t_max
-        objects = self.object_list
+        sightlines = self._known if self._still else self._sightlines()
+        camera_ray = ox == 0.0 and oy == 0.0 and oz == 0.0  # the camera sits at the origin
         nearest = None
-        for obj in objects:
-            t = obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max)
-            if t is not None:
-                nearest, distance = obj, t
-                t_max = t * TIE_SHRINK
+        for obj, index, ux, uy, uz, reach in (
+                sightlines.camera if camera_ray else sightlines.anywhere):
+            if dx * ux + dy * uy + dz * uz >= reach:
+                t = obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max)
+                if t is not None:
+                    nearest, k, distance = obj, index, t
+                    t_max = t * TIE_SHRINK
         if nearest is None:
             return HitData()
         hit = nearest._hit_data(ox, oy, oz, dx, dy, dz, distance)
-        hit.primitive_index = k = objects.index(nearest)
+        hit.primitive_index = k
         p = hit.hit_point
-        self._last_hit = (p, k, p.x, p.y, p.z)  # for the shadow rays that may follow
+        self._last_hit = (p, p.x, p.y, p.z, sightlines, k)  # for shadow rays that may follow
         return hit
 
     def visible_lights(self, hit):
@@ -226,13 +234,15 @@ class Scene:
         way, which skips the surface itself and, on an edge where two walls meet, the other
         wall; both scale with the scene, where a fixed t_min would be too large for tiny
         scenes and too small for huge ones. It tests only the objects that can be in its
-        way (see _shadow_paths): in the Cornell box, only the sphere."""
+        way (see _Sightlines): in the Cornell box, only the sphere, and that only when the
+        ray's direction lies in the cone the sphere fills, seen from the light."""
         p, n = hit.hit_point, hit.normal
         px, py, pz, nx, ny, nz = p.x, p.y, p.z, n.x, n.y, n.z
         offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + hit.hit_distance)
         sx, sy, sz = px + nx * offset, py + ny * offset, pz + nz * offset
         seen = []
-        for light, x, y, z, blockers in self._shadow_paths(hit.primitive_index):
+        sightlines = self._known if self._still else self._sightlines()
+        for light, x, y, z, blockers in sightlines.lights_for(hit.primitive_index):
             lx, ly, lz = x - px, y - py, z - pz
             # The light's height above the surface: at or below `offset` it is behind the
             # surface or lies on it, and lights no part of it.
@@ -242,8 +252,9 @@ class Scene:
             distance = sqrt(r2)
             wx, wy, wz = lx / distance, ly / distance, lz / distance
             t_max = distance * (1.0 - SHADOW_EPSILON) - offset
-            for obj in blockers:
-                if obj._distance(sx, sy, sz, wx, wy, wz, offset, t_max) is not None:
+            for obj, _, ux, uy, uz, reach in blockers:
+                if wx * ux + wy * uy + wz * uz >= reach and (
+                        obj._distance(sx, sy, sz, wx, wy, wz, offset, t_max) is not None):
                     break
             else:
                 seen.append((light, Vector3D(wx, wy, wz), r2))
@@ -252,49 +263,48 @@ class Scene:
     @contextmanager
     def unchanged(self):
         """A with-block during which the scene does not change, as during a render: what
-        visible_lights works out from the scene is checked once, on entry, instead of at
-        every call."""
-        self._shadow_paths(-1)
+        the queries work out from the scene (_Sightlines) is checked once, on entry,
+        instead of at every query."""
+        self._sightlines()
         self._still = True
         try:
             yield self
         finally:
             self._still = False
 
-    def _shadow_paths(self, k):
-        """For each point light, (light, its x, y, z, the objects that can lie between it
-        and a point of object k): _ShadowPaths, worked out for the scene as it is; every
-        object when k is not an index of object_list."""
-        paths = self._paths
-        if not self._still and (paths is None or not paths.fit(self)):
-            paths = self._paths = _ShadowPaths(self)
-        if 0 <= k < len(paths.per_object):
-            return paths.per_object[k]
-        return paths.unculled
+    def _sightlines(self):
+        """The _Sightlines of the scene as it is: the last ones, unless an object or a
+        light was added, removed, moved or reshaped since (which unchanged rules out)."""
+        sightlines = self._known
+        if not self._still and (sightlines is None or not sightlines.fit(self)):
+            sightlines = self._known = _Sightlines(self)
+        return sightlines
 
-    def _blockers(self, ox, oy, oz, dx, dy, dz, t_min, t_max):
-        """The objects any_hit tests for a ray from the point of the last closest_hit: those
-        that can lie in its way when the ray ends at a point light (_ShadowPaths), all of
-        them otherwise.
+    def _blockers(self, last, ox, oy, oz, dx, dy, dz, t_min, t_max):
+        """The objects any_hit tests for a ray from the point of the last closest_hit (last
+        is what closest_hit kept of it): those that can lie in its way when the ray ends at
+        a point light (_Sightlines), all of them otherwise.
 
-        The ray must start at that very point, unchanged, and ignore its first stretch
-        (t_min) as shadow rays do, longer than the rounding error of where it crosses a
-        plane it starts on; its end must be a light's position to within rounding."""
-        _, k, x, y, z = self._last_hit
-        lights = self._shadow_paths(k)
-        paths = self._paths
-        if ox != x or oy != y or oz != z or not t_min >= paths.t_min:
-            return self.object_list
+        The ray must start at that very point, unchanged, in the scene as it was, and
+        ignore its first stretch (t_min) as shadow rays do, longer than the rounding error
+        of where it crosses a plane it starts on; its end must be a light's position to
+        within rounding."""
+        _, x, y, z, sightlines, k = last
+        if (ox != x or oy != y or oz != z or not t_min >= sightlines.t_min
+                or sightlines is not (self._known if self._still else self._sightlines())):
+            return self._sightlines().anywhere
+        lights = sightlines.per_object[k]
         ex, ey, ez = ox + dx * t_max, oy + dy * t_max, oz + dz * t_max
-        near = paths.near
+        near = sightlines.near
         # Shadow rays come light after light: try the one after the last one found first.
-        start = self._next_light
-        for i in range(start, start + len(lights)):
-            _, lx, ly, lz, blockers = lights[i % len(lights)]
-            if -near <= lx - ex <= near and -near <= ly - ey <= near and -near <= lz - ez <= near:
-                self._next_light = i + 1
-                return blockers
-        return self.object_list
+        for i in (self._next_light, *range(len(lights))):
+            if i < len(lights):
+                _, lx, ly, lz, blockers = lights[i]
+                if (-near <= lx - ex <= near and -near <= ly - ey <= near
+                        and -near <= lz - ez <= near):
+                    self._next_light = i + 1
+                    return blockers
+        return sightlines.anywhere
 
     def set_pixel(self, pixel_val, x, y):
         """Stores the RGBColor pixel_val at column x, row y of rendered_image."""
@@ -338,29 +348,76 @@ class Scene:
             linear.result()
 
 
-class _ShadowPaths:
-    """What visible_lights and any_hit work out once about the shadow rays of a scene: for
-    every object k and point light, the objects that can lie between the light and a point
-    of k (_may_block), with the scene's size for the clearances that decide it."""
+class _Sightlines:
+    """What the queries of a scene work out once about the rays they trace most: camera
+    rays, which start at the origin, and shadow rays, which end at a point light.
 
-    __slots__ = ("changes", "objects", "lights", "per_object", "unculled", "near", "t_min")
+    Each list holds (object, its index in object_list, ux, uy, uz, reach) for the objects a
+    ray may hit: u is the unit direction from the camera to the centre of a sphere around
+    the object (from that centre to the light, for shadow rays), reach the cosine of the
+    angle that sphere fills seen from the camera (or the light), so that only a ray whose
+    direction d has d.u >= reach can hit the object (reach -2 for an object with no
+    bounding sphere, or around the camera or light). The
+    spheres are a little larger than the objects (CLEARANCE times the scene's size), so
+    that rounding, and shadow rays starting just above a surface, stay inside.
+
+    camera: every object, for rays from the camera. anywhere: every object, with no cone.
+    lights_for(k): for each point light, (light, its x, y, z, the objects that can lie
+    between it and a point of object k (_may_block), with their cones from the light)."""
+
+    __slots__ = ("changes", "objects", "lights", "camera", "anywhere", "per_object",
+                 "unculled", "near", "t_min")
 
     def __init__(self, scene):
         objects, lights = scene.object_list, scene.pointLights
         self.changes, self.objects, self.lights = _Shape.changes, list(objects), _lights(lights)
         scale = _scene_size(objects, lights)
-        self.per_object = [[(light, x, y, z, tuple(obj for obj in objects
-                                                   if _may_block(obj, k, light.pos, scale)))
-                            for light, x, y, z in self.lights] for k in objects]
-        self.unculled = [(light, x, y, z, tuple(objects)) for light, x, y, z in self.lights]
+
+        def seen_from(point, sign, kept=lambda obj: True):
+            entries = []
+            for index, obj in enumerate(objects):
+                if kept(obj):
+                    ux, uy, uz, reach = _cone(obj, point, scale)
+                    entries.append((obj, index, sign * ux, sign * uy, sign * uz, reach))
+            return entries
+
+        self.camera = seen_from(Vector3D(0.0, 0.0, 0.0), 1.0)
+        self.anywhere = [(obj, index, 0.0, 0.0, 0.0, -2.0) for index, obj in enumerate(objects)]
+        # Shadow rays run towards their light: their direction d must have -d in the cone
+        # seen from the light, that is d.(-u) >= reach.
+        self.per_object = [[(light, x, y, z, seen_from(
+            light.pos, -1.0, lambda obj: _may_block(obj, blocked, light.pos, scale)))
+            for light, x, y, z in self.lights] for blocked in objects]
+        self.unculled = [(light, x, y, z, seen_from(light.pos, -1.0))
+                         for light, x, y, z in self.lights]
         self.near = LIGHT_MATCH * scale
         self.t_min = SHADOW_T_MIN * scale
 
+    def lights_for(self, k):
+        """The lights and their possible blockers for a point of object k; every object
+        when k is not an index of object_list."""
+        return self.per_object[k] if 0 <= k < len(self.per_object) else self.unculled
+
     def fit(self, scene):
-        """Whether the scene is still the one these paths were worked out for: the same
+        """Whether the scene is still the one these lists were worked out for: the same
         objects and lights, none of them moved since."""
         return (self.changes == _Shape.changes and self.objects == scene.object_list
                 and self.lights == _lights(scene.pointLights))
+
+
+def _cone(obj, point, scale):
+    """(ux, uy, uz, reach) of obj seen from point, for _Sightlines."""
+    bounds = obj._bounds()
+    if bounds is None:
+        return 0.0, 0.0, 0.0, -2.0
+    centre, radius = bounds
+    radius += CLEARANCE * scale
+    vx, vy, vz = centre.x - point.x, centre.y - point.y, centre.z - point.z
+    distance = hypot(vx, vy, vz)
+    if distance <= radius:
+        return 0.0, 0.0, 0.0, -2.0
+    return (vx / distance, vy / distance, vz / distance,
+            sqrt((distance - radius) * (distance + radius)) / distance)
 
 
 def _lights(lights):
@@ -521,6 +578,10 @@ class Primitive(ABC):
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
         return self._last_hit
 
+    def _bounds(self):
+        """(centre, radius) of a sphere holding the object, or None when there is none."""
+        return None
+
 
 class _FastPrimitive(Primitive):
     """A built-in primitive: intersect() is the public face of _distance and _hit_data."""
@@ -584,6 +645,9 @@ class Sphere(_FastPrimitive):
         if t_min <= t1 <= t_max:
             return t1
         return None
+
+    def _bounds(self):
+        return self._origin, self._radius
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
         cx, cy, cz, r = self._k
@@ -689,6 +753,11 @@ class Parallelogram(_FastPrimitive):
         if not -EDGE_TOLERANCE <= b <= 1.0 + EDGE_TOLERANCE:
             return None
         return t
+
+    def _bounds(self):
+        # The centre point + (s1 + s2)/2; the farthest corners lie half a diagonal from it.
+        s1, s2 = self._s1, self._s2
+        return self._point + (s1 + s2) * 0.5, max(Length(s1 + s2), Length(s1 - s2)) * 0.5
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
         nx, ny, nz, _ = self._k

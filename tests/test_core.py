@@ -638,11 +638,19 @@ def test_objects_added_or_reshaped_after_a_query_cast_their_shadows():
 
 
 class PlainParallelogram(Parallelogram):
-    """A Parallelogram PyRT does not know as one of its own: every shadow ray tests it."""
+    """A Parallelogram PyRT does not know as one of its own, with no bounding sphere: every
+    camera and shadow ray tests it."""
+
+    def _bounds(self):
+        return None
 
 
 class PlainSphere(Sphere):
-    """A Sphere PyRT does not know as one of its own: every shadow ray tests it."""
+    """A Sphere PyRT does not know as one of its own, with no bounding sphere: every camera
+    and shadow ray tests it."""
+
+    def _bounds(self):
+        return None
 
 
 boxes = st.tuples(*[st.floats(-3.0, 3.0)] * 3)
@@ -698,16 +706,24 @@ def cornell_boxes_with_lights(draw):
 
 @settings(max_examples=150, deadline=None)
 @given(st.one_of(scenes_with_lights(), cornell_boxes_with_lights()),
-       st.lists(st.tuples(boxes, boxes), min_size=1, max_size=4))
-def test_shadow_rays_that_leave_objects_out_see_what_testing_all_would(copies, rays):
+       st.lists(st.tuples(st.one_of(st.just((0.0, 0.0, 0.0)), boxes), boxes),
+                min_size=1, max_size=4))
+def test_rays_that_leave_objects_out_see_what_testing_all_would(copies, rays):
+    # Rays from the camera (the origin) and shadow rays skip the objects outside the cone
+    # they could be hit in, and shadow rays those that cannot be in their way.
     own, plain = copies
     for origin, target in rays:
         direction = Vector3D(*target) - Vector3D(*origin)
         assume(Length(direction) > 0.1)
         camera_ray = Ray(Vector3D(*origin), direction)
         hits = [scene.closest_hit(camera_ray) for scene in copies]
+        assert hits[0].has_hit == hits[1].has_hit
+        assert own.any_hit(camera_ray) == plain.any_hit(camera_ray) == any(
+            obj.intersect(camera_ray).has_hit for obj in own.object_list)
         if not hits[0].has_hit:
             continue
+        assert (hits[0].primitive_index, hits[0].hit_distance) == (
+            hits[1].primitive_index, hits[1].hit_distance)
         assert [light for light, _, _ in own.visible_lights(hits[0])] == [
             own.pointLights[plain.pointLights.index(light)]
             for light, _, _ in plain.visible_lights(hits[1])]
