@@ -16,7 +16,7 @@ from math import hypot, isfinite, tan
 from pathlib import Path
 
 from PyRT_Common import *
-from PyRT_Common import _restore_state, check_constants
+from PyRT_Common import _new, _restore_state, check_constants
 
 # ------------------------------------------------------------------------------------------
 # Robustness constants
@@ -795,7 +795,9 @@ class Lambertian(BRDF):
         cos_theta = normal.x * wi.x + normal.y * wi.y + normal.z * wi.z  # Dot, inlined
         if cos_theta > 0.0:
             kd = self.kd
-            return RGBColor(kd.r * cos_theta, kd.g * cos_theta, kd.b * cos_theta)
+            value = _new(RGBColor)  # RGBColor(...) without its __init__: see PyRT_Common
+            value.r, value.g, value.b = kd.r * cos_theta, kd.g * cos_theta, kd.b * cos_theta
+            return value
         return BLACK
 
 
