@@ -42,7 +42,8 @@ import statistics
 import sys
 import tempfile
 import time
-from math import log10
+from functools import partial
+from math import hypot, log10, sqrt, tan
 from pathlib import Path
 from typing import Callable
 
@@ -53,6 +54,8 @@ from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from AppRenderer import FIGURES, SCENES, make_integrator, positive_arg
 from PyRT_Common import BLACK, Length, Normalize, Ray
+from PyRT_Core import (EDGE_TOLERANCE, INFINITY, OFFSET_SCALE, SHADOW_EPSILON, TIE_SHRINK,
+                       Sphere)
 from PyRT_Integrators import Integrator
 from PyRT_Rendering import usable_cores
 
@@ -92,6 +95,148 @@ class StudentPhongIntegrator(Integrator):
 
 
 # ------------------------------------------------------------------------------------------
+# The flat loop: what CPython needs per pixel
+# ------------------------------------------------------------------------------------------
+def flat_phong(scene) -> np.ndarray:
+    """The course's Phong image of a scene of spheres and parallelograms lit by point lights
+    (Figures 1 and 5), made by one flat loop: no objects per pixel and no method calls,
+    numpy only for each row's camera directions. It gives the image render() gives, with
+    the same numbers in the same order (the primitives' own precomputed constants, the same
+    intersection formulas, tie rule, shadow-ray offsets and shading), and measures what the
+    interpreter needs for it: the speed table quotes the framework as a multiple of it.
+
+    It does the plain work of the course's algorithm: it tests every object for every
+    camera ray and every shadow ray, where render() leaves out the objects a ray cannot
+    hit (Scene, _Sightlines)."""
+    camera, objects = scene.camera, []
+    for obj in scene.object_list:
+        kd = obj.BRDF.kd
+        objects.append((isinstance(obj, Sphere), obj._k, getattr(obj, "_k2", None),
+                        kd.r, kd.g, kd.b))
+    lights = [(light.pos.x, light.pos.y, light.pos.z, light.intensity.r, light.intensity.g,
+               light.intensity.b) for light in scene.pointLights]
+    ambient_r, ambient_g, ambient_b = scene.i_a.r, scene.i_a.g, scene.i_a.b
+    low, high = -EDGE_TOLERANCE, 1.0 + EDGE_TOLERANCE
+    width, height = camera.width, camera.height
+    # Camera.get_direction for a whole row at once, as Camera.row_directions computes it
+    scale_y = tan(camera.vertical_fov / 2.0)
+    scale_x = scale_y * camera.aspect_ratio
+    screen_x = np.array([(2.0 * (x + 0.5) / width - 1.0) * scale_x for x in range(width)])
+    image = np.zeros((height, width, 3))
+    for y in range(height):
+        screen_y = (1.0 - 2.0 * (y + 0.5) / height) * scale_y
+        length = np.sqrt(screen_x * screen_x + (screen_y * screen_y + 1.0))
+        row = []
+        for dx, dy, dz in zip((screen_x / length).tolist(), (screen_y / length).tolist(),
+                              (-1.0 / length).tolist()):
+            # The nearest hit of the camera ray, from the origin: t_min 0, t_max infinity.
+            t_max, nearest = INFINITY, None
+            for sphere, k, k2, kr, kg, kb in objects:
+                if sphere:
+                    cx, cy, cz, r = k
+                    fx, fy, fz = -cx / r, -cy / r, -cz / r
+                    b = fx * dx + fy * dy + fz * dz
+                    lx, ly, lz = fx - b * dx, fy - b * dy, fz - b * dz
+                    disc = 1.0 - (lx * lx + ly * ly + lz * lz)
+                    if disc < 0.0:
+                        continue
+                    f = hypot(fx, fy, fz)
+                    if b > 0.0:
+                        q = -b - sqrt(disc)
+                        t0, t1 = q * r, (f - 1.0) * ((f + 1.0) / q) * r
+                    else:
+                        q = sqrt(disc) - b
+                        t0, t1 = (f - 1.0) * ((f + 1.0) / q) * r, q * r
+                    if 0.0 <= t0 <= t_max:
+                        t = t0
+                    elif 0.0 <= t1 <= t_max:
+                        t = t1
+                    else:
+                        continue
+                else:
+                    nx, ny, nz, pn = k
+                    den = dx * nx + dy * ny + dz * nz
+                    if den == 0.0:
+                        continue
+                    t = pn / den
+                    if not 0.0 <= t <= t_max:
+                        continue
+                    px, py, pz, uax, uay, uaz, ubx, uby, ubz = k2
+                    qx, qy, qz = dx * t - px, dy * t - py, dz * t - pz
+                    if not (low <= qx * uax + qy * uay + qz * uaz <= high
+                            and low <= qx * ubx + qy * uby + qz * ubz <= high):
+                        continue
+                nearest, distance, t_max = (sphere, k, kr, kg, kb), t, t * TIE_SHRINK
+            if nearest is None:
+                row += (0.0, 0.0, 0.0)
+                continue
+            sphere, k, kr, kg, kb = nearest
+            t = distance
+            if sphere:
+                cx, cy, cz, r = k
+                vx, vy, vz = (dx * t - cx) / r, (dy * t - cy) / r, (dz * t - cz) / r
+                length = sqrt(vx * vx + vy * vy + vz * vz)
+                nx, ny, nz = vx / length, vy / length, vz / length
+                px, py, pz = cx + nx * r, cy + ny * r, cz + nz * r
+            else:
+                nx, ny, nz, _ = k
+                if dx * nx + dy * ny + dz * nz > 0.0:
+                    nx, ny, nz = -nx, -ny, -nz
+                px, py, pz = dx * t, dy * t, dz * t
+            red, green, blue = kr * ambient_r, kg * ambient_g, kb * ambient_b
+            offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + t)
+            sx, sy, sz = px + nx * offset, py + ny * offset, pz + nz * offset
+            for lpx, lpy, lpz, ir, ig, ib in lights:
+                lx, ly, lz = lpx - px, lpy - py, lpz - pz
+                if lx * nx + ly * ny + lz * nz <= offset:
+                    continue
+                r2 = lx * lx + ly * ly + lz * lz
+                light_distance = sqrt(r2)
+                wx, wy, wz = lx / light_distance, ly / light_distance, lz / light_distance
+                s_min, s_max = offset, light_distance * (1.0 - SHADOW_EPSILON) - offset
+                for sphere, k, k2, _, _, _ in objects:  # the shadow ray, against every object
+                    if sphere:
+                        cx, cy, cz, r = k
+                        fx, fy, fz = (sx - cx) / r, (sy - cy) / r, (sz - cz) / r
+                        b = fx * wx + fy * wy + fz * wz
+                        ex, ey, ez = fx - b * wx, fy - b * wy, fz - b * wz
+                        disc = 1.0 - (ex * ex + ey * ey + ez * ez)
+                        if disc < 0.0:
+                            continue
+                        f = hypot(fx, fy, fz)
+                        if b > 0.0:
+                            q = -b - sqrt(disc)
+                            t0, t1 = q * r, (f - 1.0) * ((f + 1.0) / q) * r
+                        else:
+                            q = sqrt(disc) - b
+                            t0, t1 = (f - 1.0) * ((f + 1.0) / q) * r, q * r
+                        if s_min <= t0 <= s_max or s_min <= t1 <= s_max:
+                            break
+                    else:
+                        onx, ony, onz, pn = k
+                        den = wx * onx + wy * ony + wz * onz
+                        if den == 0.0:
+                            continue
+                        ts = (pn - (sx * onx + sy * ony + sz * onz)) / den
+                        if not s_min <= ts <= s_max:
+                            continue
+                        ppx, ppy, ppz, uax, uay, uaz, ubx, uby, ubz = k2
+                        qx, qy, qz = sx + wx * ts - ppx, sy + wy * ts - ppy, sz + wz * ts - ppz
+                        if (low <= qx * uax + qy * uay + qz * uaz <= high
+                                and low <= qx * ubx + qy * uby + qz * ubz <= high):
+                            break
+                else:  # nothing in the way: the Lambertian kd * cos, over r^2
+                    cos_theta = nx * wx + ny * wy + nz * wz
+                    if cos_theta > 0.0:
+                        red += ir * (kr * cos_theta) / r2
+                        green += ig * (kg * cos_theta) / r2
+                        blue += ib * (kb * cos_theta) / r2
+            row += (red, green, blue)
+        image[y] = np.array(row).reshape(-1, 3)
+    return image
+
+
+# ------------------------------------------------------------------------------------------
 # Measuring
 # ------------------------------------------------------------------------------------------
 def time_render(integrator: Integrator, workers: int, repeats: int,
@@ -103,17 +248,27 @@ def time_render(integrator: Integrator, workers: int, repeats: int,
 def time_renders(make: Callable[[], Integrator], worker_counts: list, repeats: int,
                  samples_per_pixel: int = 1) -> list:
     """For each worker count, the median time in seconds of `repeats` calls of render()
-    on an integrator from make(). The counts take turns, so that a slow spell of the
-    machine slows them alike instead of one of them. make() is called for each render:
-    objects once pickled for worker processes keep their attributes in dictionaries from
-    then on, which slows a later one-process render of them by about 10%."""
-    times = [[] for _ in worker_counts]
+    on an integrator from make(), the counts taking turns (time_turns). make() is called
+    for each render: objects once pickled for worker processes keep their attributes in
+    dictionaries from then on, which slows a later one-process render of them by about
+    10%."""
+    def renders(workers):
+        return lambda: partial(make().render, workers=workers,
+                               samples_per_pixel=samples_per_pixel, progress=False)
+
+    return time_turns([renders(workers) for workers in worker_counts], repeats)
+
+
+def time_turns(tasks: list, repeats: int) -> list:
+    """For each task, the median time in seconds of `repeats` runs. A task is a function
+    that prepares a run (not timed) and returns it; the tasks take turns, so that a slow
+    spell of the machine slows them alike instead of one of them."""
+    times = [[] for _ in tasks]
     for _ in range(repeats):
-        for workers, counted in zip(worker_counts, times):
-            integrator = make()
+        for task, counted in zip(tasks, times):
+            run = task()
             start = time.perf_counter()
-            integrator.render(workers=workers, samples_per_pixel=samples_per_pixel,
-                              progress=False)
+            run()
             counted.append(time.perf_counter() - start)
     return [statistics.median(counted) for counted in times]
 
@@ -188,8 +343,9 @@ def progress(message: str) -> None:
 # Part 1: the speed table
 # ------------------------------------------------------------------------------------------
 def speed_table(size: int, repeats: int, workers: int, folder: Path) -> str:
-    """Renders every course figure and the student Phong with 1 and `workers` processes;
-    returns the Markdown table of microseconds per pixel."""
+    """Renders every course figure and the student Phong with 1 and `workers` processes,
+    and the Phong images with the flat loop too; returns the Markdown table of
+    microseconds per pixel."""
     jobs = list(FIGURES) + [("student", "student_phong", scene, None)
                             for scene in ("sphere", "cornell")]
     pixels = size * size
@@ -197,20 +353,39 @@ def speed_table(size: int, repeats: int, workers: int, folder: Path) -> str:
     for number, (figure, name, scene, max_depth) in enumerate(jobs, 1):
         integrator = prepared(name, figure, scene, max_depth, size, folder)
         progress(f"[{number}/{len(jobs)}] {label(integrator)} on the {SCENE_NAMES[scene]}")
-        one, many = time_renders(
-            lambda: prepared(name, figure, scene, max_depth, size, folder), [1, workers],
-            repeats)
+        tasks = [lambda count=count: partial(
+            prepared(name, figure, scene, max_depth, size, folder).render, workers=count,
+            progress=False) for count in (1, workers)]
+        phong = name in ("phong", "student_phong")
+        if phong:
+            check_flat_loop(integrator)
+            tasks.append(lambda: partial(flat_phong, SCENES[scene](size, size)))
+        one, many, *flat = time_turns(tasks, repeats)
         rows.append([figure_label(figure), label(integrator), SCENE_NAMES[scene],
-                     f"{one / pixels * 1e6:.2f}", f"{many / pixels * 1e6:.2f}",
-                     f"{one / many:.2f}"])
-    header = ["Image", "Integrator", "Scene", "1 process (µs/pixel)",
-              f"{workers} processes (µs/pixel)", "Speed-up"]
+                     f"{flat[0] / pixels * 1e6:.2f}" if phong else "",
+                     f"{one / pixels * 1e6:.2f}", f"{one / flat[0]:.2f}" if phong else "",
+                     f"{many / pixels * 1e6:.2f}", f"{one / many:.2f}"])
+    header = ["Image", "Integrator", "Scene", "Flat loop (µs/pixel)", "1 process (µs/pixel)",
+              "1 process / flat loop", f"{workers} processes (µs/pixel)", "Speed-up"]
     notes = (f"{size}x{size} pixels, one ray through each pixel centre; each time is the "
              f"median of {repeats} call(s) of Integrator.render(), which includes writing "
-             "the .png, .npy and .hdr files and, with several processes, starting them. "
+             "the .png, .npy and .hdr files and, with several processes, starting them; "
+             "the one-process render, the all-core render and the flat loop take turns. "
              "'student' is StudentPhongIntegrator of benchmark.py, the Phong model written "
-             "with PyRT's Vector3D and RGBColor operations only.")
+             "with PyRT's Vector3D and RGBColor operations only. The flat loop is flat_phong "
+             "of benchmark.py: the same Phong image, bit for bit, from one loop with no "
+             "objects per pixel and no method calls, testing every object for every ray; "
+             "'1 process / flat loop' is the framework's time as a multiple of it.")
     return markdown_table(header, rows, 3) + "\n\n" + notes
+
+
+def check_flat_loop(integrator: Integrator) -> None:
+    """Raises an AssertionError unless flat_phong gives the image integrator.render() gives,
+    to within 1e-15."""
+    integrator.render(workers=1, progress=False)
+    difference = np.abs(flat_phong(integrator.scene) - integrator.scene.rendered_image).max()
+    assert difference <= 1e-15, (f"the flat loop's image differs from render()'s by up to "
+                                 f"{difference:g}")
 
 
 # ------------------------------------------------------------------------------------------

@@ -3,8 +3,12 @@ import time
 
 import pytest
 
-from benchmark import time_renders
-from helpers import REPO, run_python
+import numpy as np
+
+from AppRenderer import cornell_box_scene, sphere_test_scene
+from benchmark import flat_phong, time_renders
+from helpers import REPO, render_image, run_python
+from PyRT_Integrators import PhongIntegrator
 
 
 class RecordingIntegrator:
@@ -83,5 +87,16 @@ def test_quick_run_writes_the_speed_table_and_the_accuracy_plot(tmp_path):
     for row in ("Figure 1 | Phong | Cornell box", "Figure 3 | Intersection",
                 "StudentPhong | sphere scene", "StudentPhong | Cornell box"):
         assert row in table
+    assert "| Flat loop (µs/pixel) | 1 process (µs/pixel) | 1 process / flat loop |" in table
     assert "Phong, Cornell box (Figure 1) | 4 |" in (tmp_path / "speed_accuracy.md").read_text()
     assert (tmp_path / "speed_accuracy.png").stat().st_size > 0
+
+
+@pytest.mark.parametrize("make", [
+    lambda: cornell_box_scene(0.75, 2, width=24, height=20),
+    lambda: sphere_test_scene(width=20, height=24)], ids=["figure1", "figure5"])
+def test_the_flat_loop_gives_the_image_render_gives(tmp_path, make):
+    expected = render_image(PhongIntegrator(str(tmp_path / "img")), make(), workers=1)
+    image = flat_phong(make())
+    assert expected.any()
+    assert np.abs(image - expected).max() <= 1e-15
