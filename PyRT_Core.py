@@ -7,6 +7,9 @@ distance as its normalised version.
 Speed note: ``Scene.closest_hit`` and ``Scene.any_hit`` run for every ray, so they talk to
 the primitives through ``_distance``, which takes the ray as plain floats and returns the
 distance or None; only the nearest hit is turned into a ``HitData`` (by ``_hit_data``).
+The rays traced most share a point: every camera ray starts at the camera, every shadow
+ray ends at its light. For each such point the scene works out once which objects a ray
+from it can hit (``_Sightlines``), and tests only those.
 """
 import os
 import threading
@@ -176,6 +179,8 @@ class Scene:
     # common case costs no function call. They test the objects of a _Sightlines list:
     # each object with the cone, seen from the ray's origin, that holds it; a direction
     # outside the cone cannot hit the object, which costs a dot product to find out.
+    # During a render (unchanged) the lists are taken as they are, without a call of
+    # _sightlines: `self._known if self._still else self._sightlines()`.
     def any_hit(self, ray):
         """True when the ray hits any object at a distance in [ray.t_min, ray.t_max].
 
@@ -257,7 +262,9 @@ class Scene:
                         obj._distance(sx, sy, sz, wx, wy, wz, offset, t_max) is not None):
                     break
             else:
-                seen.append((light, Vector3D(wx, wy, wz), r2))
+                wi = _new(Vector3D)  # Vector3D(wx, wy, wz) without its __init__
+                wi.x, wi.y, wi.z = wx, wy, wz
+                seen.append((light, wi, r2))
         return seen
 
     @contextmanager
@@ -297,13 +304,12 @@ class Scene:
         ex, ey, ez = ox + dx * t_max, oy + dy * t_max, oz + dz * t_max
         near = sightlines.near
         # Shadow rays come light after light: try the one after the last one found first.
-        for i in (self._next_light, *range(len(lights))):
-            if i < len(lights):
-                _, lx, ly, lz, blockers = lights[i]
-                if (-near <= lx - ex <= near and -near <= ly - ey <= near
-                        and -near <= lz - ez <= near):
-                    self._next_light = i + 1
-                    return blockers
+        first = self._next_light
+        for i in range(first, first + len(lights)):
+            _, lx, ly, lz, blockers = lights[i % len(lights)]
+            if -near <= lx - ex <= near and -near <= ly - ey <= near and -near <= lz - ez <= near:
+                self._next_light = i % len(lights) + 1
+                return blockers
         return sightlines.anywhere
 
     def set_pixel(self, pixel_val, x, y):

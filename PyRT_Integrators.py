@@ -193,8 +193,7 @@ class PhongIntegrator(Integrator):
                              "no BRDF; call obj.set_BRDF(Lambertian(RGBColor(...))) on it")
         kd, i_a = brdf.kd, scene.i_a
         r, g, b = kd.r * i_a.r, kd.g * i_a.g, kd.b * i_a.b  # kd (x) i_a
-        d, n = ray.d, hit.normal
-        wo = Vector3D(-d.x, -d.y, -d.z)
+        wo, n = -ray.d, hit.normal
         for light, wi, r2 in scene.visible_lights(hit):
             f = brdf.get_value(wi, wo, n)
             intensity = light.intensity
