@@ -412,18 +412,25 @@ class _Sightlines:
 
 
 def _cone(obj, point, scale):
-    """(ux, uy, uz, reach) of obj seen from point, for _Sightlines."""
+    """(ux, uy, uz, reach) of obj seen from point, for _Sightlines: the cone that a sphere
+    around obj fills; for a flat object around point (or with no bounds, as an infinite
+    plane), the half of all directions that head towards its plane (reach just below 0:
+    directions along the plane are kept too)."""
     bounds = obj._bounds()
-    if bounds is None:
-        return 0.0, 0.0, 0.0, -2.0
-    centre, radius = bounds
-    radius += CLEARANCE * scale
-    vx, vy, vz = centre.x - point.x, centre.y - point.y, centre.z - point.z
-    distance = hypot(vx, vy, vz)
-    if distance <= radius:
-        return 0.0, 0.0, 0.0, -2.0
-    return (vx / distance, vy / distance, vz / distance,
-            sqrt((distance - radius) * (distance + radius)) / distance)
+    if bounds is not None:
+        centre, radius = bounds
+        radius += CLEARANCE * scale
+        vx, vy, vz = centre.x - point.x, centre.y - point.y, centre.z - point.z
+        distance = hypot(vx, vy, vz)
+        if distance > radius:
+            return (vx / distance, vy / distance, vz / distance,
+                    sqrt((distance - radius) * (distance + radius)) / distance)
+    if type(obj) in (InfinitePlane, Parallelogram):
+        n, height = obj.normal, Dot(point, obj.normal) - obj._k[3]
+        if abs(height) >= CLEARANCE * scale:
+            towards = -1.0 if height > 0.0 else 1.0
+            return towards * n.x, towards * n.y, towards * n.z, -1e-9
+    return 0.0, 0.0, 0.0, -2.0
 
 
 def _lights(lights):
