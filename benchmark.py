@@ -102,28 +102,20 @@ class StudentPhongIntegrator(Integrator):
 # ------------------------------------------------------------------------------------------
 # Measuring
 # ------------------------------------------------------------------------------------------
-def time_render(integrator: Integrator, workers: int, repeats: int,
-                samples_per_pixel: int = 1, **options) -> float:
-    """The median time, in seconds, of `repeats` calls of integrator.render()."""
-    return time_renders(lambda: integrator, [workers], repeats, samples_per_pixel,
-                        **options)[0]
-
-
 def time_renders(make: Callable[[], Integrator], worker_counts: list, repeats: int,
-                 samples_per_pixel: int = 1, **options) -> list:
+                 samples_per_pixel: int = 1) -> list:
     """For each worker count, the median time in seconds of `repeats` calls of render()
     on an integrator from make(). The counts take turns, so that a slow spell of the
     machine slows them alike instead of one of them. make() is called for each render:
     objects once pickled for worker processes keep their attributes in dictionaries from
-    then on, which slows a later one-process render of them by about 10%. options go to
-    render() too (adaptive=True, say)."""
+    then on, which slows a later one-process render of them by about 10%."""
     times = [[] for _ in worker_counts]
     for _ in range(repeats):
         for workers, counted in zip(worker_counts, times):
             integrator = make()
             start = time.perf_counter()
             integrator.render(workers=workers, samples_per_pixel=samples_per_pixel,
-                              progress=False, **options)
+                              progress=False)
             counted.append(time.perf_counter() - start)
     return [statistics.median(counted) for counted in times]
 
@@ -239,26 +231,32 @@ class Point(NamedTuple):
 def convergence(integrator: Integrator, samples: list, adaptive_samples: list,
                 reference_samples: int, workers: int, repeats: int) -> list:
     """A Point for each sample count, uniform and adaptive (default tolerance), against a
-    reference rendered with reference_samples samples per pixel. The renders' own printed
-    reports are left out of the benchmark's output."""
+    reference rendered with reference_samples samples per pixel. The renders take turns,
+    repeat after repeat, so that a slow spell of the machine slows them alike; the renders'
+    own printed reports are left out of the benchmark's output."""
     scene = integrator.scene
     accuracy_file = Path(integrator.get_filename() + ACCURACY_SUFFIX)
+    runs = [("uniform", n) for n in samples] + [("adaptive", n) for n in adaptive_samples]
+    times = {run: [] for run in runs}
+    errors = {}  # the same on every repeat: the images do not change
     with contextlib.redirect_stdout(io.StringIO()):
         integrator.render(workers=workers, samples_per_pixel=reference_samples,
                           progress=False)
         reference = scene.rendered_image.copy()
-        peak = float(reference.max())
-        points = []
-        runs = [("uniform", n) for n in samples] + [("adaptive", n) for n in adaptive_samples]
-        for sampling, n in runs:
-            seconds = time_render(integrator, workers, repeats, n,
+        for _ in range(repeats):
+            for sampling, n in runs:
+                start = time.perf_counter()
+                integrator.render(workers=workers, samples_per_pixel=n, progress=False,
                                   adaptive=sampling == "adaptive")
-            rmse = float(np.sqrt(np.mean((scene.rendered_image - reference) ** 2)))
-            psnr = 20.0 * log10(peak / rmse) if rmse > 0.0 else float("inf")
-            estimated = (json.loads(accuracy_file.read_text())["estimated_rmse"]
-                         if accuracy_file.exists() else float("nan"))
-            points.append(Point(sampling, n, seconds, rmse, psnr, estimated))
-    return points
+                times[sampling, n].append(time.perf_counter() - start)
+                rmse = float(np.sqrt(np.mean((scene.rendered_image - reference) ** 2)))
+                estimated = (json.loads(accuracy_file.read_text())["estimated_rmse"]
+                             if accuracy_file.exists() else float("nan"))
+                errors[sampling, n] = rmse, estimated
+    peak = float(reference.max())
+    return [Point(sampling, n, statistics.median(times[sampling, n]), rmse,
+                  20.0 * log10(peak / rmse) if rmse > 0.0 else float("inf"), estimated)
+            for (sampling, n), (rmse, estimated) in errors.items()]
 
 
 def loglog_slope(xs: list, ys: list) -> float:
