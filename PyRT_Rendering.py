@@ -379,7 +379,7 @@ class UniformSampling:
         channels = [float(np.sqrt(self.variance[:, :, c][finite[:, :, c]].mean()))
                     for c in range(3)]
         rmse = float(np.sqrt(self.variance[finite].mean()))
-        span = float(image[finite].max() - image[finite].min())
+        span = float(np.ptp(image[finite])) if finite.any() else 0.0
         rays = self.rays()
         accuracy = {
             "image": Path(base).name + ".png",
