@@ -34,8 +34,8 @@ a temporary folder that is deleted at the end:
                                               # a quick check, about 10 seconds
     python benchmark.py --help                # all options
 
-How long it takes: with the defaults, about 2.5 minutes on a machine with 2 cores (about
-1.7 minutes for part 1 and 45 seconds for part 2). Part 1 grows with the square of --size,
+How long it takes: with the defaults, 5 to 7 minutes on a machine with 2 cores (about
+1.7 minutes for part 1 and 3 to 5 minutes for part 2, depending on the machine's load). Part 1 grows with the square of --size,
 part 2 with the square of --accuracy-size and with --reference-samples, both with
 --repeats.
 """
@@ -417,10 +417,12 @@ def parse_args(argv: list | None) -> argparse.Namespace:
         description="Measure how fast PyRT renders. Part 1 (speed): microseconds per pixel "
                     "of every integrator of the course's figures, and of a plain student "
                     "Phong, with one process and with all cores -> out/benchmark.md. "
-                    "Part 2 (accuracy): render time and error against a high-quality "
-                    "reference for 1, 4, 16 and 64 samples per pixel (by default) -> "
+                    "Part 2 (accuracy): render time, error against a high-quality "
+                    "reference and estimated error for uniform sampling at 1, 4, 16 and "
+                    "64 samples per pixel and adaptive sampling capped at 4, 16 and 64 (by "
+                    "default), with the targets of adaptive sampling checked -> "
                     "out/speed_accuracy.md and out/speed_accuracy.png. With no options "
-                    "both parts run, in about 2.5 minutes on 2 cores.")
+                    "both parts run, in 5 to 7 minutes on 2 cores.")
     parser.add_argument("--only", choices=("speed", "accuracy"),
                         help="run only part 1 (speed) or only part 2 (accuracy)")
     parser.add_argument("--size", type=positive_arg(int), default=500,
