@@ -13,6 +13,7 @@ from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
 from PyRT_Compare import REFERENCE_SIZE, compare_figures, write_sheet
+from PyRT_Rendering import ADAPTIVE_TOLERANCE
 
 # out/ next to this script, wherever it is run from
 DIRECTORY = str(Path(__file__).resolve().parent / "out") + "/"
@@ -159,11 +160,13 @@ def compare_with_course(renders, folder, size, samples_per_pixel=1):
     return sheet
 
 
-def render(integrator, scene, workers=None, samples_per_pixel=1):
+def render(integrator, scene, workers=None, samples_per_pixel=1, adaptive=False,
+           tolerance=ADAPTIVE_TOLERANCE):
     """Renders scene with integrator, prints the rendering time and returns the PNG path."""
     integrator.add_scene(scene)
     start = time.perf_counter()
-    integrator.render(workers=workers, samples_per_pixel=samples_per_pixel)
+    integrator.render(workers=workers, samples_per_pixel=samples_per_pixel,
+                      adaptive=adaptive, tolerance=tolerance)
     print(f"Rendering time: {time.perf_counter() - start:.2f} s")
     png = integrator.get_filename() + ".png"
     print(f"Saved {png} (and .npy, .hdr)")
@@ -252,6 +255,17 @@ def _has_display():
     return backend not in ("agg", "pdf", "ps", "svg", "pgf", "cairo", "template")
 
 
+def fraction_arg(text):
+    """An argparse type: a number from 0 to 1."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = None
+    if value is None or not 0.0 <= value <= 1.0:
+        raise argparse.ArgumentTypeError(f"must be a number from 0 to 1, got {text!r}")
+    return value
+
+
 def positive_arg(kind):
     """An argparse type: a number of the given kind (int or float) greater than 0."""
     def convert(text):
@@ -292,6 +306,16 @@ def parse_args(argv):
     parser.add_argument("--spp", type=positive_arg(int), default=1,
                         help="samples (rays) per pixel, averaged: more smooth jagged "
                              "edges and cost proportionally more time (default 1)")
+    parser.add_argument("--adaptive", action="store_true",
+                        help="spend the rays where the image needs them: first the ray "
+                             "through every pixel's centre, then --spp N rays in the pixels "
+                             "that differ from a neighbour; also saves a map of the rays, "
+                             "<image>_samples.png")
+    parser.add_argument("--tolerance", type=fraction_arg, default=None,
+                        help="with --adaptive: how much two neighbouring pixels may differ, "
+                             "as a fraction of the image's range in the PNG, before both "
+                             f"get more rays (default {ADAPTIVE_TOLERANCE}, about 8 of the "
+                             "PNG's 255 steps; smaller is more accurate and slower)")
     parser.add_argument("--no-window", action="store_true",
                         help="save the image without showing it")
     parser.add_argument("--all-figures", action="store_true",
@@ -299,7 +323,13 @@ def parse_args(argv):
                              "out/rendered_image_<Integrator>_figure<N>.png, compare them "
                              "with the course's and show them side by side in "
                              f"out/{SHEET_FILENAME}")
-    return parser.parse_args(argv)
+    args = parser.parse_args(argv)
+    if args.adaptive and args.spp == 1:
+        parser.error("argument --adaptive: needs --spp N with N of 2 or more, the most rays "
+                     "a pixel may get")
+    if args.tolerance is not None and not args.adaptive:
+        parser.error("argument --tolerance: only applies with --adaptive")
+    return args
 
 
 def main(argv=None):
@@ -309,7 +339,9 @@ def main(argv=None):
         jobs = [(figure_integrator(entry, base), SCENES[entry[2]]) for entry in FIGURES]
     else:
         jobs = [(make_integrator(args.integrator, base, args.max_depth), SCENES[args.scene])]
-    pngs = [render(integrator, make_scene(args.width, args.height), args.workers, args.spp)
+    tolerance = ADAPTIVE_TOLERANCE if args.tolerance is None else args.tolerance
+    pngs = [render(integrator, make_scene(args.width, args.height), args.workers, args.spp,
+                   args.adaptive, tolerance)
             for integrator, make_scene in jobs]
     shown = pngs[-1]
     if args.all_figures:

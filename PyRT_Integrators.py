@@ -10,7 +10,8 @@ pixel, the progress bar, checks) lives in PyRT_Rendering.py.
 """
 from PyRT_Common import *
 from PyRT_Common import __all__ as _common_names, _restore_state
-from PyRT_Rendering import check_render, not_a_color, rendered_blocks, sampled_row
+from PyRT_Rendering import (ADAPTIVE_TOLERANCE, check_render, not_a_color, rendered_blocks,
+                            sampled_row)
 
 __all__ = _common_names + [
     "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
@@ -50,7 +51,8 @@ class Integrator(ABC):
     def compute_color(self, ray):
         """The RGBColor arriving along ray."""
 
-    def render(self, workers=None, samples_per_pixel=1, progress=True):
+    def render(self, workers=None, samples_per_pixel=1, progress=True, adaptive=False,
+               tolerance=ADAPTIVE_TOLERANCE):
         """Renders every pixel of the scene's camera and saves the image.
 
         Each row of pixels comes from render_row below: for every pixel a ray, its colour
@@ -61,13 +63,22 @@ class Integrator(ABC):
             (for renders long enough to gain from them), 1 renders in this process only.
             The image is the same either way.
         samples_per_pixel: rays per pixel, averaged; 1 is the ray through the centre, more
-            (jittered over an even grid inside the pixel) smooth jagged edges.
-        progress: show a progress bar with the time left."""
-        scene, workers, samples = check_render(self, workers, samples_per_pixel)
-        with rendered_blocks(self, workers, samples, progress) as blocks:
+            (jittered over an even grid inside the pixel) smooth jagged edges. With more
+            than one, the estimated error of the image is printed and saved beside it.
+        progress: show a progress bar with the time left.
+        adaptive: False gives every pixel samples_per_pixel rays. True first traces the
+            ray through every pixel's centre, then samples_per_pixel rays in the pixels
+            that differ from a neighbour by more than tolerance, a fraction of the
+            image's range as its PNG shows it (PyRT_Rendering.AdaptiveSampling), and
+            saves a map of the rays per pixel. The loop below then receives the rows
+            twice: the refined rows replace the centre rays' rows."""
+        scene, workers, sampling = check_render(self, workers, samples_per_pixel, adaptive,
+                                                tolerance)
+        with rendered_blocks(self, workers, sampling, progress) as blocks:
             for y0, rows in blocks:  # consecutive rows, in any order: y0, y0 + 1, ...
                 scene.rendered_image[y0:y0 + len(rows)] = rows
         scene.save_image(self.get_filename(), tonemap=self.tonemap)
+        sampling.report(self)
 
     def render_row(self, y, samples_per_pixel=1):
         """Row y of the image: for every pixel x, the colour arriving along the ray from the

@@ -5,7 +5,11 @@
 makes that loop fast, smooth and safe, so that the integrators' file stays about rendering:
 
 - checks made before any work, with messages that say what to fix;
-- sampling patterns: where inside a pixel its rays go when it gets more than one;
+- sampling patterns: where inside a pixel its rays go when it gets more than one, and
+  how far the average of those rays may be from the pixel's true colour;
+- uniform and adaptive sampling: the passes of a render over the image (adaptive
+  sampling first traces the centre rays, then refines the pixels that need it), and what
+  a render reports about its accuracy;
 - parallel rendering: worker processes on the other cores render blocks of rows into an
   image in shared memory, while this process renders too;
 - the progress bar, the partial image saved on Ctrl+C, and the report of NaN or infinite
@@ -15,6 +19,7 @@ Nothing here changes an image: one process or several give the same pixels, bit 
 """
 import contextlib
 import copy
+import json
 import mmap
 import multiprocessing
 import multiprocessing.connection
@@ -27,11 +32,13 @@ import time
 import traceback
 from math import sqrt
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 from tqdm import tqdm
 
-from PyRT_Common import RGBColor, Ray, Vector3D, check_constants
+from PyRT_Common import RGBColor, Ray, Vector3D, check_constants, plt
+from PyRT_Core import _write_atomically, tonemap_image
 
 INFINITY = float("inf")
 # With workers=None, a render that one process would finish sooner than this stays in
@@ -41,15 +48,19 @@ INFINITY = float("inf")
 # process renders meanwhile, so a worker that starts late only takes fewer rows.
 PARALLEL_MIN_SECONDS = {"fork": 0.2, "spawn": 2.0, "forkserver": 2.0}
 SAMPLE_SEED = 0x5079_5254  # "PyRT"
+# The default tolerance of adaptive sampling: neighbouring pixels whose colours, as the PNG
+# shows them, differ by more than 3% of its range (8 of its 255 steps) are both refined.
+ADAPTIVE_TOLERANCE = 0.03
 
 
 # ------------------------------------------------------------------------------------------
 # Checks before rendering
 # ------------------------------------------------------------------------------------------
-def check_render(integrator, workers, samples_per_pixel):
-    """(scene, workers, samples_per_pixel) checked, with the scene's image allocated and
-    cleared; or the error that says what to call or change first. Nothing is rendered
-    before every check has passed."""
+def check_render(integrator, workers, samples_per_pixel, adaptive=False,
+                 tolerance=ADAPTIVE_TOLERANCE):
+    """(scene, workers, sampling) checked, with the scene's image allocated and cleared and
+    sampling the plan of the rays (sampling_plan); or the error that says what to call or
+    change first. Nothing is rendered before every check has passed."""
     if getattr(multiprocessing.current_process(), "_inheriting", False):
         # A worker process is importing the main script, and the script renders at
         # import: it is not guarded by `if __name__ == "__main__":`. The main process
@@ -66,12 +77,13 @@ def check_render(integrator, workers, samples_per_pixel):
     samples = _check_count("samples_per_pixel", samples_per_pixel)
     if workers is not None:
         workers = _check_count("workers", workers, "None (all cores) or a whole number >= 1")
+    sampling = sampling_plan(integrator, samples, adaptive, tolerance)
     _check_writable(Path(integrator.get_filename()).resolve().parent)
     shape = (scene.camera.height, scene.camera.width, 3)
     if scene.rendered_image is None or scene.rendered_image.shape != shape:
         scene.rendered_image = np.zeros(shape)
     scene.rendered_image.fill(0.0)
-    return scene, workers, samples
+    return scene, workers, sampling
 
 
 def _check_count(name, value, allowed="a whole number >= 1"):
@@ -96,15 +108,16 @@ def _check_writable(folder):
 # ------------------------------------------------------------------------------------------
 # Rows of the image
 # ------------------------------------------------------------------------------------------
-def render_block(integrator, y0, y1, samples_per_pixel):
-    """Rows y0 .. y1-1 of the image, each from integrator.render_row, as an array of shape
-    (y1 - y0, width, 3)."""
-    rows = [integrator.render_row(y, samples_per_pixel) for y in range(y0, y1)]
+def render_block(integrator, y0, y1, rows):
+    """Rows y0 .. y1-1 of the image, each from rows(integrator, y), the row function of a
+    render's pass (which calls integrator.render_row or traces the samples of its
+    pixels), as an array of shape (y1 - y0, width, rows.channels)."""
+    block = [rows(integrator, y) for y in range(y0, y1)]
     check_constants(f"{type(integrator).__name__}.render")
     try:
-        return np.array(rows, dtype=float).reshape(y1 - y0, -1, 3)
+        return np.array(block, dtype=float).reshape(y1 - y0, -1, rows.channels)
     except (TypeError, ValueError):
-        raise _first_bad_color(integrator, rows, y0) from None
+        raise _first_bad_color(integrator, block, y0) from None
 
 
 def not_a_color(integrator, color, x, y):
@@ -139,30 +152,76 @@ def _report_non_finite(image, name):
 # ------------------------------------------------------------------------------------------
 # Sampling patterns
 # ------------------------------------------------------------------------------------------
-def pixel_offsets(samples, y, width):
-    """For each pixel of row y, the (u, v) points inside it that are sampled.
-
-    N samples form a jittered grid of a x b cells (a*b = N, as square as N allows: 4x4 for
-    16, 2x4 for 8): one random point in each cell, so the samples cover the pixel evenly.
-    The random numbers depend only on the row, so an image is the same on every run and
-    for any number of workers."""
+def stratum_grid(samples):
+    """(rows, columns) of the grid of cells (strata) that N = samples rays share in a
+    pixel: a x b cells with a * b = N, as square as N allows (4 x 4 for 16, 2 x 4 for 8,
+    1 x 7 for 7)."""
     a = max(d for d in range(1, int(sqrt(samples)) + 1) if samples % d == 0)
-    b = samples // a
+    return a, samples // a
+
+
+def pixel_offsets(samples, y, width, xs=None):
+    """For each pixel of row y (or each pixel x of xs), the (u, v) points inside it that
+    are sampled.
+
+    N samples form a jittered grid of a x b cells (stratum_grid): one random point in
+    each cell, cell k in row k // b and column k % b, so the samples cover the pixel
+    evenly. The random numbers depend only on the row, so an image is the same on every
+    run and for any number of workers."""
+    a, b = stratum_grid(samples)
     jitter = np.random.default_rng((SAMPLE_SEED, y)).random((width, samples, 2))
+    if xs is not None:
+        jitter = jitter[xs]
     cell = np.arange(samples)
     u = (cell % b + jitter[:, :, 0]) / b
     v = (cell // b + jitter[:, :, 1]) / a
     return np.stack((u, v), axis=2).tolist()
 
 
-def sampled_row(integrator, y, samples):
-    """Integrator.render_row with more than one sample per pixel: each pixel x gets the
-    average colour of camera rays through the points pixel_offsets gives it."""
+def stratum_pairs(samples):
+    """The cells of pixel_offsets paired with a neighbour, as (k, l) pairs of cell numbers:
+    side by side when the grid's rows have an even number of cells, one above the other
+    when its columns have, else (N odd) consecutive cells row by row, the last one left
+    out. The error estimate compares the two samples of each pair (sampled_pixels)."""
+    a, b = stratum_grid(samples)
+    if b % 2 == 1 and a % 2 == 0:
+        order = [row * b + column for column in range(b) for row in range(a)]
+    else:
+        order = list(range(samples))
+    return list(zip(order[0::2], order[1::2]))
+
+
+def error_variance_weight(samples):
+    """w such that w * sum(d^2), over the pairs of stratum_pairs with d the difference of
+    their two samples, estimates the squared error of the mean of the pixel's N jittered
+    samples (one colour channel).
+
+    Let each pair be one cell of twice the size holding two independent samples
+    ("collapsed strata"): the mean of N such samples has the unbiased variance estimate
+    sum(d^2) / (2 P N), P pairs (sum(d^2) / N^2 for N even). One sample in each of the
+    N cells is more accurate than that: the error comes from the edges in the pixel, and
+    there the variance of jittered sampling falls as N^(-3/2) (an edge crosses about
+    sqrt(N) cells, each adding a variance of order 1/N^2). The N/2 double cells have
+    (N/2)^(-3/2) / 2 = sqrt(2) N^(-3/2): sqrt(2) times the variance of the N cells, so
+    w = 1 / (sqrt(2) * 2 P * N)."""
+    return 1.0 / (sqrt(2.0) * 2 * len(stratum_pairs(samples)) * samples)
+
+
+def sampled_pixels(integrator, y, samples, xs):
+    """The pixels xs of row y, each from camera rays through the points pixel_offsets gives
+    it: per pixel six numbers, the average colour (r, g, b) of its samples and the
+    estimated squared error of each channel of that average (error_variance_weight).
+    Pixels of the row not in xs are zeros. The colours are summed in the order of the
+    cells, as Integrator.render_row always has, so that an image is the same bit for bit
+    whichever way it is rendered."""
     camera = integrator.scene.camera
     compute_color = integrator.compute_color
-    row = []
-    for x, offsets in enumerate(pixel_offsets(samples, y, camera.width)):
+    pairs = stratum_pairs(samples)
+    weight = error_variance_weight(samples) if pairs else 0.0
+    row = [0.0] * (6 * camera.width)
+    for x, offsets in zip(xs, pixel_offsets(samples, y, camera.width, xs)):
         r = g = b = 0.0
+        colors = []
         for u, v in offsets:
             direction = camera.get_direction(x, y, u, v)
             color = compute_color(Ray(Vector3D(0.0, 0.0, 0.0), direction, INFINITY, 0.0))
@@ -172,57 +231,324 @@ def sampled_row(integrator, y, samples):
                 b += color.b
             except (AttributeError, TypeError):
                 raise not_a_color(integrator, color, x, y) from None
-        row += (r / samples, g / samples, b / samples)
+            colors.append((color.r, color.g, color.b))  # the values, should color change
+        sr = sg = sb = 0.0
+        for k, l in pairs:
+            (rk, gk, bk), (rl, gl, bl) = colors[k], colors[l]
+            sr += (rk - rl) ** 2
+            sg += (gk - gl) ** 2
+            sb += (bk - bl) ** 2
+        row[6 * x:6 * x + 6] = (r / samples, g / samples, b / samples,
+                                sr * weight, sg * weight, sb * weight)
     return row
+
+
+def sampled_row(integrator, y, samples):
+    """Integrator.render_row with more than one sample per pixel: each pixel x gets the
+    average colour of camera rays through the points pixel_offsets gives it."""
+    row = sampled_pixels(integrator, y, samples, list(range(integrator.scene.camera.width)))
+    return [value for i, value in enumerate(row) if i % 6 < 3]
+
+
+def refined_pixels(display, tolerance):
+    """Which pixels adaptive sampling refines, as a (height, width) array of booleans:
+    both pixels of every pair of neighbours (side by side or one above the other) whose
+    colours in `display`, the image as its PNG shows it, differ by more than tolerance in
+    some channel.
+
+    A straight edge that crosses a pixel always separates its centre from the centre of
+    the neighbour to its right or to its left, or from the one above or below (a
+    corner of the pixel lies beyond the edge, and that corner is the midpoint of two
+    neighbours' centres, so one of them lies beyond it too): pairs of centre rays find
+    every edge wider than the spacing of the pixels and of enough contrast."""
+    refined = np.zeros(display.shape[:2], dtype=bool)
+    across = (np.abs(np.diff(display, axis=1)) > tolerance).any(axis=2)
+    refined[:, :-1] |= across
+    refined[:, 1:] |= across
+    down = (np.abs(np.diff(display, axis=0)) > tolerance).any(axis=2)
+    refined[:-1] |= down
+    refined[1:] |= down
+    return refined
+
+
+# ------------------------------------------------------------------------------------------
+# Samples per pixel: uniform and adaptive
+# ------------------------------------------------------------------------------------------
+ACCURACY_SUFFIX = "_accuracy.json"
+SAMPLE_MAP_SUFFIX = "_samples.png"
+SAMPLE_MAP_COLORS = "inferno"  # black: the fewest rays, through red to pale yellow: the most
+
+
+class _CourseRows:
+    """Rows as integrator.render_row makes them: the ray through each pixel's centre for
+    one sample per pixel, and the rows of an integrator that makes them itself."""
+
+    channels = 3
+
+    def __init__(self, samples):
+        self.samples = samples
+
+    def __call__(self, integrator, y):
+        return integrator.render_row(y, self.samples)
+
+    def pixels(self, y0, y1, width):
+        return (y1 - y0) * width
+
+
+class _SampledRows:
+    """Rows of N jittered samples per pixel with their error estimate (sampled_pixels), in
+    every pixel, or in the pixels that `refined` marks."""
+
+    channels = 6
+
+    def __init__(self, samples, refined=None):
+        self.samples = samples
+        self.refined = refined
+
+    def __call__(self, integrator, y):
+        if self.refined is None:
+            xs = list(range(integrator.scene.camera.width))
+        else:
+            xs = np.flatnonzero(self.refined[y]).tolist()
+        return sampled_pixels(integrator, y, self.samples, xs)
+
+    def pixels(self, y0, y1, width):
+        if self.refined is None:
+            return (y1 - y0) * width
+        return int(self.refined[y0:y1].sum())
+
+
+class RenderPass(NamedTuple):
+    """One pass over the image: its row function (rows(integrator, y), picklable for the
+    worker processes), how many processes render it (None: decide from its first row),
+    keep(y0, block), which takes the rendered block of rows in this process and returns
+    its colours, and the words that tell the progress bar which pass it is."""
+    rows: object
+    workers: object
+    keep: object
+    description: str = ""
+
+
+class UniformSampling:
+    """N rays through every pixel: the ray through its centre for N = 1; for N > 1 the
+    jittered grid of pixel_offsets, with an estimate of each pixel's error."""
+
+    adaptive = False
+    tolerance = None
+
+    def __init__(self, samples, traced=True):
+        self.samples = samples
+        # PyRT traces the N > 1 rays of each pixel itself and sees their spread, unless the
+        # integrator makes its rows itself
+        self.traced = traced and samples > 1
+        self.variance = None  # the estimated squared error of each pixel and channel
+
+    def passes(self, integrator, workers):
+        """The passes of the render, each planned once the passes before it are done."""
+        if not self.traced:
+            yield RenderPass(_CourseRows(self.samples), workers, lambda y0, block: block)
+            return
+        self.variance = np.zeros(integrator.scene.rendered_image.shape)
+        yield RenderPass(_SampledRows(self.samples), workers, self._keep_sampled)
+
+    def _keep_sampled(self, y0, block):
+        self.variance[y0:y0 + len(block)] = block[:, :, 3:]
+        return block[:, :, :3]
+
+    def rays(self):
+        """The rays traced in each pixel, as an array of the image's height and width."""
+        return np.full(self.variance.shape[:2], self.samples)
+
+    def report(self, integrator):
+        """Prints the estimated error of the saved image once and writes it beside the image
+        (<filename>_accuracy.json); removes the files of this kind that an earlier render
+        left under the same name and that would now describe another image."""
+        base = integrator.get_filename()
+        if self.variance is None:
+            if self.samples > 1:
+                print(f"No error estimate: {type(integrator).__name__} makes its rows itself "
+                      "(it overrides render_row), so PyRT does not see its samples")
+            Path(base + ACCURACY_SUFFIX).unlink(missing_ok=True)
+        else:
+            self._write_accuracy(integrator.scene.rendered_image, base)
+        if not self.adaptive:
+            Path(base + SAMPLE_MAP_SUFFIX).unlink(missing_ok=True)
+
+    def _write_accuracy(self, image, base):
+        finite = np.isfinite(self.variance) & np.isfinite(image)
+        channels = [float(np.sqrt(self.variance[:, :, c][finite[:, :, c]].mean()))
+                    for c in range(3)]
+        rmse = float(np.sqrt(self.variance[finite].mean()))
+        span = float(np.ptp(image[finite])) if finite.any() else 0.0
+        rays = self.rays()
+        accuracy = {
+            "image": Path(base).name + ".png",
+            "samples_per_pixel": self.samples,
+            "adaptive": self.adaptive,
+            "tolerance": self.tolerance,
+            "estimated_rmse": rmse,
+            "estimated_rmse_rgb": channels,
+            "image_range": span,
+            "pixels": int(rays.size),
+            "pixels_with_n_samples": int((rays >= self.samples).sum()),
+            "rays": int(rays.sum()),
+            "rays_per_pixel": float(rays.mean()),
+            "method": "the square root of the mean, over pixels and channels, of each "
+                      "pixel's estimated squared error sum(d^2) / (sqrt(2) * 2P * N), d the "
+                      "difference of the two samples of each of the P pairs of neighbouring "
+                      "strata; pixels that kept their centre ray count as exact",
+        }
+        path = Path(base + ACCURACY_SUFFIX)
+        _write_atomically(path, lambda f: f.write(json.dumps(accuracy, indent=2).encode()))
+        share = f", {rmse / span:.2%} of its range" if span > 0.0 else ""
+        print(f"Estimated error: RMSE {rmse:.2e} of the linear image{share}, from the spread "
+              f"of each pixel's samples; saved in {path}")
+
+
+class AdaptiveSampling(UniformSampling):
+    """Rays where the image needs them: first the ray through every pixel's centre (the
+    course's image); then N jittered rays (those of UniformSampling's pixel_offsets) in
+    the pixels that refined_pixels picks, where two neighbours' centre rays differ by more
+    than tolerance as the PNG shows them. A refined pixel is the uniform render's pixel,
+    bit for bit; the others keep their centre ray, which for a colour that varies smoothly
+    across the pixel is its average to second order. The decision is made in this process
+    between the two passes, so the image is the same for any number of workers."""
+
+    adaptive = True
+
+    def __init__(self, samples, tolerance):
+        super().__init__(samples)
+        self.tolerance = tolerance
+        self.centre = self.refined = None
+
+    def passes(self, integrator, workers):
+        image = integrator.scene.rendered_image
+        self.centre = np.zeros(image.shape)
+        self.variance = np.zeros(image.shape)
+        self.refined = np.zeros(image.shape[:2], dtype=bool)
+        start = time.perf_counter()
+        yield RenderPass(_CourseRows(1), workers, self._keep_centre, " centre rays")
+        seconds = time.perf_counter() - start
+        if integrator.tonemap:
+            display = tonemap_image(self.centre)
+        else:
+            display = np.clip(np.nan_to_num(self.centre), 0.0, 1.0)
+        self.refined = refined_pixels(display, self.tolerance)
+        count = int(self.refined.sum())
+        if count == 0:
+            return
+        if workers is None:  # the centre rays' time per ray, for this pass's rays
+            workers = worker_count(seconds * count * self.samples / self.refined.size)
+        yield RenderPass(_SampledRows(self.samples, self.refined), workers,
+                         self._keep_refined, f" {self.samples} rays at edges")
+
+    def _keep_centre(self, y0, block):
+        self.centre[y0:y0 + len(block)] = block
+        return block
+
+    def _keep_refined(self, y0, block):
+        rows = slice(y0, y0 + len(block))
+        refined = self.refined[rows, :, None]
+        self.variance[rows] = np.where(refined, block[:, :, 3:], 0.0)
+        return np.where(refined, block[:, :, :3], self.centre[rows])
+
+    def rays(self):
+        return 1 + self.samples * self.refined
+
+    def report(self, integrator):
+        rays = self.rays()
+        count = int(self.refined.sum())
+        path = integrator.get_filename() + SAMPLE_MAP_SUFFIX
+        _write_atomically(Path(path), lambda f: plt.imsave(
+            f, rays, cmap=SAMPLE_MAP_COLORS, vmin=1, vmax=1 + self.samples, format="png"))
+        print(f"Adaptive sampling: {count} of {rays.size} pixels ({count / rays.size:.1%}) "
+              f"got {self.samples} rays besides their centre ray: {rays.mean():.2f} rays per "
+              f"pixel, where uniform sampling takes {self.samples}. Map of the rays per pixel: "
+              f"{path} (black: 1, pale yellow: {1 + self.samples})")
+        super().report(integrator)
+
+
+def sampling_plan(integrator, samples, adaptive, tolerance):
+    """UniformSampling or AdaptiveSampling for render()'s arguments, checked."""
+    if not isinstance(adaptive, (bool, np.bool_)):
+        raise ValueError(f"render: adaptive must be True or False, got {adaptive!r}")
+    if isinstance(tolerance, bool) or not isinstance(tolerance, (int, float, np.number)) \
+            or not 0.0 <= tolerance <= 1.0:
+        raise ValueError(f"render: tolerance must be a number from 0 to 1 (a fraction of the "
+                         f"image's range as its PNG shows it), got {tolerance!r}")
+    traced = _traces_its_rays(integrator)
+    if adaptive and samples == 1:
+        raise ValueError("render: adaptive=True needs samples_per_pixel >= 2, the most rays "
+                         "a pixel may get; with 1 every pixel gets the ray through its centre")
+    if adaptive and not traced:
+        print(f"PyRT: {type(integrator).__name__} makes its rows itself (it overrides "
+              f"render_row), so adaptive sampling cannot choose its rays: every pixel gets "
+              f"{samples}", file=sys.stderr)
+    if adaptive and traced:
+        return AdaptiveSampling(samples, float(tolerance))
+    return UniformSampling(samples, traced)
+
+
+def _traces_its_rays(integrator):
+    """Whether the integrator keeps Integrator.render_row, so that PyRT traces the rays of
+    each pixel itself; one that overrides it (LazyIntegrator, say) makes its rows its own
+    way."""
+    method = type(integrator).render_row
+    return (method.__module__, method.__qualname__) == ("PyRT_Integrators",
+                                                        "Integrator.render_row")
 
 
 # ------------------------------------------------------------------------------------------
 # Rendering the rows: in this process and in worker processes
 # ------------------------------------------------------------------------------------------
 @contextlib.contextmanager
-def rendered_blocks(integrator, workers, samples, progress):
+def rendered_blocks(integrator, workers, sampling, progress):
     """Yields an iterator over (first row, rows) blocks that together make the image, in
-    any order, rendered by this process and by worker processes; shows a progress bar.
-    The scene does not change meanwhile (Scene.unchanged).
+    any order, rendered by this process and by worker processes, pass after pass of
+    sampling (UniformSampling or AdaptiveSampling: a later pass gives some rows again,
+    better); shows a progress bar for each pass. The scene does not change meanwhile
+    (Scene.unchanged).
 
     On Ctrl+C it stops the workers, saves the rows stored so far in the scene's image as
     <filename>_partial and re-raises. When all is done it reports NaN or infinite pixels."""
     scene = integrator.scene
     height, width = scene.camera.height, scene.camera.width
-    bar = tqdm(total=height * width, unit="px", unit_scale=True, disable=not progress,
-               desc=type(integrator).__name__, mininterval=0.5)
-    blocks = _render_blocks(integrator, height, samples, workers)
 
-    def counted():
-        for y0, rows in blocks:
-            yield y0, rows
-            bar.update(rows.shape[0] * width)
+    def passes():
+        for rendering in sampling.passes(integrator, workers):
+            rows = rendering.rows
+            with tqdm(total=rows.pixels(0, height, width), unit="px", unit_scale=True,
+                      disable=not progress, mininterval=0.5,
+                      desc=type(integrator).__name__ + rendering.description) as bar, \
+                    contextlib.closing(_render_blocks(integrator, height, rows,
+                                                      rendering.workers)) as blocks:
+                for y0, block in blocks:
+                    yield y0, rendering.keep(y0, block)
+                    bar.update(rows.pixels(y0, y0 + len(block), width))
 
+    blocks = passes()
     try:
         with scene.unchanged():
-            yield counted()
+            yield blocks
     except KeyboardInterrupt:
         blocks.close()  # stops the worker processes, wherever Ctrl+C struck
-        bar.close()
         partial = integrator.get_filename() + "_partial"
         scene.save_image(partial, tonemap=integrator.tonemap)
         print(f"\nInterrupted: the rows rendered so far are saved in {partial}.png (.npy, "
               ".hdr)", file=sys.stderr)
         raise
-    bar.close()
     _report_non_finite(scene.rendered_image, type(integrator).__name__)
 
 
-def _render_blocks(integrator, height, samples, workers):
-    """Yields (first row, rows) blocks of the image, in any order."""
+def _render_blocks(integrator, height, rows, workers):
+    """Yields (first row, block) blocks of the image, each from render_block with the row
+    function rows, in any order."""
     first = 0
     if workers is None:  # time the first row to see whether workers would pay off
         start = time.perf_counter()
-        yield 0, render_block(integrator, 0, 1, samples)
+        yield 0, render_block(integrator, 0, 1, rows)
         first = 1
-        rest = (time.perf_counter() - start) * (height - 1)
-        method = multiprocessing.get_context().get_start_method()
-        workers = usable_cores() if rest > PARALLEL_MIN_SECONDS[method] else 1
+        workers = worker_count((time.perf_counter() - start) * (height - 1))
     blocks = _row_blocks(first, height, workers)
     payload = None
     if workers > 1 and len(blocks) > 1:
@@ -231,13 +557,20 @@ def _render_blocks(integrator, height, samples, workers):
             print(f"PyRT: rendering in one process: {reason}", file=sys.stderr)
     if payload is None:
         for y0, y1 in blocks:
-            yield y0, render_block(integrator, y0, y1, samples)
+            yield y0, render_block(integrator, y0, y1, rows)
         return
-    yield from _render_with_workers(integrator.scene.camera, blocks, samples,
+    yield from _render_with_workers(integrator.scene.camera, blocks, rows,
                                     min(workers, len(blocks)) - 1, payload, renderer)
 
 
-def _render_with_workers(camera, blocks, samples, count, payload, renderer):
+def worker_count(seconds):
+    """The processes for rows that one process would render in `seconds`: every usable
+    core when the render is long enough for workers to pay off, else 1."""
+    method = multiprocessing.get_context().get_start_method()
+    return usable_cores() if seconds > PARALLEL_MIN_SECONDS[method] else 1
+
+
+def _render_with_workers(camera, blocks, rows, count, payload, renderer):
     """Yields the blocks rendered by this process, with renderer (a copy of the integrator
     unpickled from payload), and by `count` worker processes.
 
@@ -248,12 +581,12 @@ def _render_with_workers(camera, blocks, samples, count, payload, renderer):
     another to hand out work. Each worker sends one message as it stops: None, or the
     error that stopped it."""
     mp = multiprocessing.get_context()
-    shared = _SharedImage(mp, camera.height, camera.width, len(blocks))
+    shared = _SharedImage(mp, (camera.height, camera.width, rows.channels), len(blocks))
     unreported = dict(enumerate(blocks))
     workers = []  # (process, receiving end of its pipe)
     for _ in range(count):
         receiver, sender = mp.Pipe(duplex=False)
-        process = mp.Process(target=_worker, args=(payload, blocks, samples, shared, sender),
+        process = mp.Process(target=_worker, args=(payload, blocks, rows, shared, sender),
                              daemon=True)
         process.start()
         sender.close()
@@ -262,7 +595,7 @@ def _render_with_workers(camera, blocks, samples, count, payload, renderer):
     try:
         while (i := shared.take()) is not None:
             y0, y1 = unreported.pop(i)
-            yield y0, render_block(renderer, y0, y1, samples)
+            yield y0, render_block(renderer, y0, y1, rows)
             yield from _reported(shared, unreported, running, timeout=0)
         while unreported and running:  # all blocks are taken: wait for the last ones
             yield from _reported(shared, unreported, running, timeout=0.1)
@@ -278,7 +611,7 @@ def _render_with_workers(camera, blocks, samples, count, payload, renderer):
         for process, _ in workers:
             process.join()
     for y0, y1 in list(unreported.values()):  # taken by a worker that stopped early
-        yield y0, render_block(renderer, y0, y1, samples)
+        yield y0, render_block(renderer, y0, y1, rows)
 
 
 def usable_cores():
@@ -330,18 +663,19 @@ def _worker_payload(integrator):
 
 
 class _SharedImage:
-    """What the processes rendering one image share: the image, how many blocks have been
-    taken and a finished flag per block."""
+    """What the processes rendering one image share: the image (of shape (height, width,
+    numbers per pixel)), how many blocks have been taken and a finished flag per block."""
 
-    def __init__(self, mp, height, width, blocks):
-        self.shape = (height, width, 3)
+    def __init__(self, mp, shape, blocks):
+        self.shape = shape
+        size = int(np.prod(shape))
         if mp.get_start_method() == "fork":
             # Forked workers inherit this mapping. Its pages are zeroed as they are first
             # written, half of them by the worker, where RawArray zeroes all 6 MB of a
             # 500 x 500 image here, before the worker can start.
-            self.buffer = mmap.mmap(-1, height * width * 3 * 8)
+            self.buffer = mmap.mmap(-1, size * 8)
         else:
-            self.buffer = mp.RawArray("d", height * width * 3)
+            self.buffer = mp.RawArray("d", size)
         self.taken = mp.Value("i", 0)
         self.finished = mp.Array("b", blocks)
 
@@ -370,7 +704,7 @@ class _SharedImage:
             return self.finished[:]
 
 
-def _worker(payload, blocks, samples, shared, results):
+def _worker(payload, blocks, rows, shared, results):
     """A worker process: renders the blocks it takes into the shared image."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C is handled once, by the main process
     try:
@@ -378,7 +712,7 @@ def _worker(payload, blocks, samples, shared, results):
         image = shared.image()
         while (i := shared.take()) is not None:
             y0, y1 = blocks[i]
-            image[y0:y1] = render_block(integrator, y0, y1, samples)
+            image[y0:y1] = render_block(integrator, y0, y1, rows)
             shared.finish(i)
         results.send(None)
     except BaseException as error:

@@ -18,6 +18,7 @@ import AppRenderer
 from AppRenderer import cornell_box_scene, sphere_test_scene
 from helpers import APP, REPO, render_image, run_python
 from PyRT_Compare import REFERENCE_DIR
+from PyRT_Rendering import ADAPTIVE_TOLERANCE
 from PyRT_Core import Parallelogram, Sphere
 from PyRT_Integrators import (DepthIntegrator, IntersectionIntegrator, Integrator,
                               LazyIntegrator, NormalIntegrator, PhongIntegrator)
@@ -132,7 +133,7 @@ def test_cornell_box_area_light_is_a_square_under_the_ceiling():
 # Running the script
 # ------------------------------------------------------------------------------------------
 OPTIONS = ["--integrator", "--scene", "--width", "--height", "--max-depth", "--out",
-           "--workers", "--spp", "--no-window", "--all-figures"]
+           "--workers", "--spp", "--adaptive", "--tolerance", "--no-window", "--all-figures"]
 
 
 def test_help_exits_zero_and_lists_the_options(tmp_path):
@@ -209,6 +210,8 @@ def test_a_figure_without_a_reference_is_reported_not_raised(tmp_path, capsys):
     (["--spp", "0"], "spp"),
     (["--spp", "two"], "spp"),
     (["--workers", "0"], "workers"),
+    (["--adaptive"], "adaptive.*--spp"),
+    (["--spp", "4", "--tolerance", "0.1"], "tolerance.*--adaptive"),
     (["--width", "0"], "width"),
 ])
 def test_bad_option_exits_with_a_usage_error_naming_it(tmp_path, arguments, named):
@@ -472,6 +475,26 @@ def test_workers_and_spp_options_reach_render(app, render_calls, options, worker
     app.run("--width", 8, "--height", 8, "--no-window", *options)
     assert [(call["workers"], call["samples_per_pixel"]) for call in render_calls] == [
         (workers, samples)]
+    assert render_calls[0]["adaptive"] is False
+
+
+@pytest.mark.parametrize("options, tolerance", [
+    (["--adaptive"], ADAPTIVE_TOLERANCE), (["--adaptive", "--tolerance", "0.1"], 0.1),
+    (["--adaptive", "--tolerance", "0"], 0.0)])
+def test_adaptive_and_tolerance_options_reach_render(app, render_calls, options, tolerance):
+    app.run("--width", 8, "--height", 8, "--no-window", "--spp", 4, *options)
+    assert [(call["adaptive"], call["tolerance"]) for call in render_calls] == [
+        (True, tolerance)]
+
+
+def test_adaptive_option_saves_the_accuracy_and_the_map_of_rays(app, tmp_path):
+    image = app.run("--width", 12, "--height", 12, "--no-window", "--spp", 16, "--adaptive")
+    expected = library_image(PhongIntegrator(str(tmp_path / "library" / "img")),
+                             "cornell", 12, 12, samples_per_pixel=16, adaptive=True)
+    assert np.array_equal(image, expected)
+    accuracy = json.loads((app.out / "rendered_image_Phong_accuracy.json").read_text())
+    assert (accuracy["adaptive"], accuracy["samples_per_pixel"]) == (True, 16)
+    assert plt.imread(app.out / "rendered_image_Phong_samples.png").shape[:2] == (12, 12)
 
 
 def test_any_number_of_workers_gives_the_same_image(app):
@@ -523,6 +546,7 @@ BAD_NUMBERS = ["0", "-3", "two"]
 @pytest.mark.parametrize("option, value", [
     *[(option, value) for option in ("--width", "--height", "--workers", "--spp")
       for value in BAD_NUMBERS + ["2.5"]],
+    *[("--tolerance", value) for value in ["-0.1", "1.5", "two", "nan", "inf"]],
     *[("--max-depth", value) for value in BAD_NUMBERS + ["inf", "nan"]],
     ("--integrator", "foo"), ("--scene", "box")])
 def test_bad_option_value_is_a_usage_error_before_anything_is_written(tmp_path, capsys,
@@ -530,7 +554,7 @@ def test_bad_option_value_is_a_usage_error_before_anything_is_written(tmp_path, 
     out = tmp_path / "out"
     with pytest.raises(SystemExit) as exited:
         AppRenderer.main(["--out", str(out), "--width", "8", "--height", "8", "--no-window",
-                          option, value])  # the last value of an option counts
+                          "--spp", "4", "--adaptive", option, value])  # the last one counts
     assert exited.value.code == 2
     err = capsys.readouterr().err
     assert err.startswith("usage:") and f"argument {option}" in err

@@ -6,7 +6,7 @@ import pytest
 import numpy as np
 
 from AppRenderer import cornell_box_scene, sphere_test_scene
-from benchmark import flat_phong, time_renders
+from benchmark import Point, equal_time_error, flat_phong, target_checks, time_renders
 from helpers import REPO, render_image, run_python
 from PyRT_Integrators import PhongIntegrator
 
@@ -81,15 +81,44 @@ def test_every_render_gets_an_integrator_of_its_own():
 def test_quick_run_writes_the_speed_table_and_the_accuracy_plot(tmp_path):
     result = run_python([REPO / "benchmark.py", "--size", "12", "--repeats", "1",
                          "--accuracy-size", "8", "--samples", "1", "4",
-                         "--reference-samples", "16", "--out", tmp_path], cwd=tmp_path)
+                         "--adaptive-samples", "4", "--reference-samples", "16",
+                         "--out", tmp_path], cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     table = (tmp_path / "benchmark.md").read_text()
     for row in ("Figure 1 | Phong | Cornell box", "Figure 3 | Intersection",
                 "StudentPhong | sphere scene", "StudentPhong | Cornell box"):
         assert row in table
     assert "| Flat loop (µs/pixel) | 1 process (µs/pixel) | 1 process / flat loop |" in table
-    assert "Phong, Cornell box (Figure 1) | 4 |" in (tmp_path / "speed_accuracy.md").read_text()
+    accuracy = (tmp_path / "speed_accuracy.md").read_text()
+    assert "Phong, Cornell box (Figure 1) | uniform | 4 |" in accuracy
+    assert "Phong, Cornell box (Figure 1) | adaptive | 4 |" in accuracy
+    assert "## Targets" in accuracy
     assert (tmp_path / "speed_accuracy.png").stat().st_size > 0
+
+
+def uniform_points(*time_and_error):
+    return [Point("uniform", n, t, e, 0.0, e) for n, (t, e) in enumerate(time_and_error)]
+
+
+def test_equal_time_error_interpolates_the_uniform_curve_on_log_log_axes():
+    # Between (1 s, 0.1) and (4 s, 0.025) the line on log-log axes has slope -1: at 2 s,
+    # the error is 0.05; outside 1 - 4 s there is no uniform point to compare with.
+    uniform = uniform_points((4.0, 0.025), (1.0, 0.1))
+    assert equal_time_error(uniform, 2.0) == pytest.approx(0.05, rel=1e-12)
+    assert equal_time_error(uniform, 0.5) != equal_time_error(uniform, 0.5)  # NaN
+
+
+def test_targets_compare_adaptive_16_with_uniform_16_and_at_equal_time():
+    points = [Point("uniform", 1, 1.0, 0.1, 0.0, float("nan")),
+              Point("uniform", 16, 4.0, 0.025, 0.0, 0.03),
+              Point("adaptive", 16, 0.5, 0.026, 0.0, 0.013),
+              Point("adaptive", 64, 2.0, 0.01, 0.0, 0.01)]
+    errors, times, equal_time, estimate = target_checks(points)
+    assert errors == "1.040 (met)"    # 0.026 / 0.025
+    assert times == "0.125 (met)"     # 0.5 s / 4 s
+    # at 0.5 s there is no uniform point; at 2 s uniform has 0.05 (above): 5 times 0.01
+    assert equal_time == "N=16: n/a, N=64: 5.0 (met)"
+    assert estimate == "0.50 - 1.20 (met)"  # 0.013 / 0.026 and 0.03 / 0.025
 
 
 @pytest.mark.parametrize("make", [

@@ -1,6 +1,7 @@
 """PyRT_Rendering.py through Integrator.render(): rendering in several processes (fork and
 spawn), the sampling patterns of samples_per_pixel, the progress of a render, Ctrl+C, and
 the checks that give clear errors."""
+import json
 import math
 import multiprocessing
 import os
@@ -15,6 +16,7 @@ import PyRT_Rendering
 from AppRenderer import sphere_test_scene
 from helpers import (GREY, PNG_TOLERANCE, PixelGrey, fov90_scene, pixel_of, read_png,
                      render_image, run_python, small_cornell_box)
+from PyRT_Common import plt
 from PyRT_Core import *
 from PyRT_Integrators import *
 
@@ -301,6 +303,289 @@ def test_bad_render_option_raises_value_error_naming_it(tmp_path, option, value)
     with pytest.raises(ValueError, match=option):
         integrator.render(progress=False, **{option: value})
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+# ------------------------------------------------------------------------------------------
+# Where the samples go: strata, uniform and adaptive
+# ------------------------------------------------------------------------------------------
+# N samples per pixel form a grid of a x b cells as square as N allows, a rows and b
+# columns, a <= b (README): worked out by hand.
+GRIDS = {2: (1, 2), 4: (2, 2), 6: (2, 3), 7: (1, 7), 8: (2, 4), 9: (3, 3), 12: (3, 4),
+         16: (4, 4)}
+
+
+def cells_of(points, rows, columns):
+    """The (row, column) cell of each (u, v) point of a pixel cut into rows x columns."""
+    return [(math.floor(v * rows), math.floor(u * columns)) for u, v in points]
+
+
+@pytest.mark.parametrize("samples", GRIDS)
+def test_uniform_samples_lie_inside_their_pixel_one_in_each_stratum(samples):
+    rows, columns = GRIDS[samples]
+    every_cell = sorted((r, c) for r in range(rows) for c in range(columns))
+    for y in (0, 7):
+        for points in PyRT_Rendering.pixel_offsets(samples, y, 5):
+            assert all(0.0 <= u < 1.0 and 0.0 <= v < 1.0 for u, v in points)
+            # one point in each cell, in the order of the cells: row by row
+            assert cells_of(points, rows, columns) == every_cell
+
+
+def image_point(ray, camera):
+    """(x + u, y + v): where the ray crosses the image plane, in pixels from the image's
+    top left corner (get_direction inverted)."""
+    d = ray.d
+    scale_y = math.tan(camera.vertical_fov / 2)
+    x_s = d.x / -d.z / (scale_y * camera.aspect_ratio)
+    y_s = d.y / -d.z / scale_y
+    return (x_s + 1) * camera.width / 2, (1 - y_s) * camera.height / 2
+
+
+class StepAt(Integrator):
+    """White left of the vertical line X = edge of the image plane (in pixels), black right
+    of it; records where every ray crosses the image plane."""
+
+    def __init__(self, filename_, edge):
+        super().__init__(filename_ + "_Step")
+        self.edge = edge
+        self.points = []
+
+    def compute_color(self, ray):
+        x, y = image_point(ray, self.scene.camera)
+        self.points.append((x, y))
+        return WHITE if x < self.edge else BLACK
+
+
+def samples_per_pixel(points):
+    """{(x, y): [(u, v), ...]}: the points grouped by pixel, as offsets inside it."""
+    pixels = {}
+    for X, Y in points:
+        x, y = math.floor(X), math.floor(Y)
+        pixels.setdefault((x, y), []).append((X - x, Y - y))
+    return pixels
+
+
+def test_uniform_render_samples_each_pixel_once_in_each_stratum(tmp_path):
+    integrator = StepAt(str(tmp_path / "img"), 2.3)
+    render_image(integrator, fov90_scene(5, 4), workers=1, samples_per_pixel=8)
+    pixels = samples_per_pixel(integrator.points)
+    assert sorted(pixels) == [(x, y) for x in range(5) for y in range(4)]
+    for points in pixels.values():
+        assert sorted(cells_of(points, 2, 4)) == [(r, c) for r in range(2) for c in range(4)]
+
+
+def test_adaptive_render_refines_both_pixels_across_an_edge_one_sample_per_stratum(tmp_path):
+    # The edge at X = 2.3 lies in pixel column 2, whose centre (2.5) is black while that
+    # of column 1 (1.5) is white: columns 1 and 2 get the centre ray and 16 rays, one in
+    # each cell of the 4 x 4 grid; the others, which match their neighbours, the centre.
+    integrator = StepAt(str(tmp_path / "img"), 2.3)
+    image = render_image(integrator, fov90_scene(5, 4), workers=1, samples_per_pixel=16,
+                         adaptive=True)
+    pixels = samples_per_pixel(integrator.points)
+    every_cell = [(r, c) for r in range(4) for c in range(4)]
+    for (x, y), points in pixels.items():
+        centre = [p for p in points if p == pytest.approx((0.5, 0.5), abs=1e-9)]
+        assert len(centre) == 1, (x, y)
+        others = [p for p in points if p is not centre[0]]
+        if x in (1, 2):
+            assert sorted(cells_of(others, 4, 4)) == every_cell, (x, y)
+        else:
+            assert others == [], (x, y)
+    assert sorted(pixels) == [(x, y) for x in range(5) for y in range(4)]
+    # column 1 is white throughout; of column 2 the left 0.3 is: 1 of 4 columns of cells
+    # lies wholly left of the edge, and the next one's sample with probability 0.2
+    assert (image[:, 1] == 1.0).all()
+    assert ((0.25 <= image[:, 2]) & (image[:, 2] <= 0.5)).all()
+    assert (image[:, [0]] == 1.0).all() and (image[:, [3, 4]] == 0.0).all()
+
+
+class Constant(Integrator):
+    """The same grey for every ray; counts its rays."""
+
+    def __init__(self, filename_):
+        super().__init__(filename_ + "_Constant")
+        self.calls = 0
+
+    def compute_color(self, ray):
+        self.calls += 1
+        return RGBColor(0.25, 0.5, 0.75)
+
+
+def test_adaptive_render_of_an_image_without_edges_traces_only_the_centre_rays(tmp_path):
+    integrator = Constant(str(tmp_path / "img"))
+    image = render_image(integrator, fov90_scene(7, 5), workers=1, samples_per_pixel=16,
+                         adaptive=True)
+    assert integrator.calls == 7 * 5
+    assert (image == (0.25, 0.5, 0.75)).all()
+    accuracy = json.loads((tmp_path / "img_Constant_accuracy.json").read_text())
+    assert (accuracy["rays"], accuracy["pixels_with_n_samples"]) == (35, 0)
+    assert accuracy["estimated_rmse"] == 0.0
+    rays = read_png(tmp_path / "img_Constant_samples.png")
+    assert rays.shape == (5, 7, 3)
+    assert (rays == rays[0, 0]).all()
+
+
+def test_sample_map_has_the_image_shape_dark_for_one_ray_bright_for_the_most(tmp_path):
+    integrator = StepAt(str(tmp_path / "img"), 2.3)
+    render_image(integrator, fov90_scene(5, 4), workers=1, samples_per_pixel=16,
+                 adaptive=True)
+    rays = read_png(tmp_path / "img_Step_samples.png")
+    assert rays.shape == (4, 5, 3)
+    colors = plt.get_cmap(PyRT_Rendering.SAMPLE_MAP_COLORS)
+    fewest, most = colors(0.0)[:3], colors(1.0)[:3]  # 1 ray and 1 + 16 rays
+    for x in range(5):
+        expected = most if x in (1, 2) else fewest
+        assert rays[:, x] == pytest.approx(np.tile(expected, (4, 1)), abs=PNG_TOLERANCE)
+
+
+def test_adaptive_render_with_zero_tolerance_where_all_pixels_differ_is_the_uniform_one(
+        tmp_path, capsys):
+    uniform = render_image(PhongIntegrator(str(tmp_path / "uniform")), small_cornell_box(16),
+                           workers=1, samples_per_pixel=4)
+    adaptive = render_image(PhongIntegrator(str(tmp_path / "adaptive")),
+                            small_cornell_box(16), workers=1, samples_per_pixel=4,
+                            adaptive=True, tolerance=0.0)
+    accuracy = json.loads((tmp_path / "adaptive_Phong_accuracy.json").read_text())
+    assert accuracy["pixels_with_n_samples"] == 16 * 16  # every pixel refined
+    assert np.array_equal(adaptive, uniform)
+
+
+def test_adaptive_render_error_is_within_5_percent_of_uniform_sampling_at_the_same_n(
+        tmp_path):
+    def render(samples, **options):
+        return render_image(PhongIntegrator(str(tmp_path / f"spp{samples}")),
+                            small_cornell_box(32), samples_per_pixel=samples, **options)
+
+    reference = render(256)
+    uniform = float(np.sqrt(np.mean((render(16) - reference) ** 2)))
+    adaptive = float(np.sqrt(np.mean((render(16, adaptive=True) - reference) ** 2)))
+    centre = float(np.sqrt(np.mean((render(1) - reference) ** 2)))
+    # refined pixels are uniform sampling's; the others' centre rays are nearly exact
+    assert adaptive <= uniform * 1.05 < centre / 2, (adaptive, uniform, centre)
+
+
+@pytest.mark.parametrize("samples", [4, 9])
+def test_adaptive_image_is_the_same_with_one_and_two_workers(tmp_path, capfd, worker_first,
+                                                             samples):
+    one = render_image(PhongIntegrator(str(tmp_path / "one")), small_cornell_box(64),
+                       workers=1, samples_per_pixel=samples, adaptive=True)
+    marker = worker_first()
+    two = render_image(PhongIntegrator(str(tmp_path / "two")), small_cornell_box(64),
+                       workers=2, samples_per_pixel=samples, adaptive=True)
+    assert marker.exists(), "no worker process rendered a block"
+    assert "one process" not in capfd.readouterr().err
+    assert np.array_equal(one, two)
+    assert np.array_equal(np.load(tmp_path / "one_Phong.npy"), one)
+    assert (read_png(tmp_path / "one_Phong_samples.png")
+            == read_png(tmp_path / "two_Phong_samples.png")).all()
+
+
+class StopsAtRefinement(StepAt):
+    """StepAt that is stopped with Ctrl+C at its first ray away from a pixel centre."""
+
+    def compute_color(self, ray):
+        x, y = image_point(ray, self.scene.camera)
+        if abs(x % 1.0 - 0.5) > 1e-9 or abs(y % 1.0 - 0.5) > 1e-9:
+            raise KeyboardInterrupt
+        return super().compute_color(ray)
+
+
+def test_ctrl_c_while_refining_saves_the_centre_rays_image(tmp_path):
+    integrator = StopsAtRefinement(str(tmp_path / "img"), 2.3)
+    integrator.add_scene(fov90_scene(5, 4))
+    with pytest.raises(KeyboardInterrupt):
+        integrator.render(workers=1, progress=False, samples_per_pixel=4, adaptive=True)
+    partial = np.load(tmp_path / "img_Step_partial.npy")
+    assert (partial[:, :2] == 1.0).all() and (partial[:, 2:] == 0.0).all()
+
+
+# ------------------------------------------------------------------------------------------
+# The error estimate
+# ------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("samples, pairs", [
+    (2, [(0, 1)]),                              # 1 x 2: side by side
+    (4, [(0, 1), (2, 3)]),                      # 2 x 2: side by side, row by row
+    (6, [(0, 3), (1, 4), (2, 5)]),              # 2 x 3: rows of 3, so one above the other
+    (9, [(0, 1), (2, 3), (4, 5), (6, 7)]),      # 3 x 3: consecutive, the last left out
+])
+def test_strata_are_paired_with_a_neighbour(samples, pairs):
+    assert PyRT_Rendering.stratum_pairs(samples) == pairs
+
+
+@pytest.mark.parametrize("samples, weight", [
+    (2, 1 / (math.sqrt(2) * 2 * 2)),    # P = 1 pair: 1 / (sqrt(2) * 2P * N)
+    (4, 1 / (math.sqrt(2) * 16)),       # N even: 1 / (sqrt(2) N^2)
+    (9, 1 / (math.sqrt(2) * 8 * 9)),    # P = 4 pairs
+])
+def test_error_variance_weight_is_one_over_sqrt2_2P_N(samples, weight):
+    assert PyRT_Rendering.error_variance_weight(samples) == pytest.approx(weight, rel=1e-15)
+
+
+class LeftHalfWhite(Integrator):
+    """White where the ray crosses the left half of its pixel, black in the right half."""
+
+    def __init__(self, filename_):
+        super().__init__(filename_ + "_LeftHalf")
+
+    def compute_color(self, ray):
+        x, _ = image_point(ray, self.scene.camera)
+        return WHITE if x % 1.0 < 0.5 else BLACK
+
+
+def test_accuracy_file_holds_the_estimate_worked_out_by_hand(tmp_path, capsys):
+    # With 2 samples per pixel (cells: left half, right half) every pixel gets one white
+    # and one black sample: mean 0.5, one pair with d = 1, estimated squared error
+    # 1 / (sqrt(2) * 2 * 2) in each channel, so the RMSE is sqrt(1 / (4 sqrt(2))).
+    image = render_image(LeftHalfWhite(str(tmp_path / "img")), fov90_scene(3, 2),
+                         workers=1, samples_per_pixel=2)
+    assert (image == 0.5).all()
+    accuracy = json.loads((tmp_path / "img_LeftHalf_accuracy.json").read_text())
+    rmse = math.sqrt(1 / (4 * math.sqrt(2)))
+    assert accuracy["estimated_rmse"] == pytest.approx(rmse, rel=1e-12)
+    assert accuracy["estimated_rmse_rgb"] == pytest.approx([rmse] * 3, rel=1e-12)
+    assert accuracy["image"] == "img_LeftHalf.png"
+    assert (accuracy["samples_per_pixel"], accuracy["adaptive"], accuracy["tolerance"]) == (
+        2, False, None)
+    assert (accuracy["pixels"], accuracy["rays"], accuracy["rays_per_pixel"]) == (6, 12, 2.0)
+    assert accuracy["image_range"] == 0.0
+    printed = [line for line in capsys.readouterr().out.splitlines() if "error" in line]
+    assert len(printed) == 1 and f"{rmse:.2e}" in printed[0], printed
+
+
+def test_a_render_without_estimate_or_map_removes_those_of_an_earlier_render(tmp_path):
+    scene = fov90_scene(5, 4)
+    render_image(StepAt(str(tmp_path / "img"), 2.3), scene, workers=1, samples_per_pixel=4,
+                 adaptive=True)
+    assert (tmp_path / "img_Step_samples.png").exists()
+    render_image(StepAt(str(tmp_path / "img"), 2.3), scene, workers=1, samples_per_pixel=4)
+    assert not (tmp_path / "img_Step_samples.png").exists()
+    assert (tmp_path / "img_Step_accuracy.json").exists()
+    render_image(StepAt(str(tmp_path / "img"), 2.3), scene, workers=1)
+    assert not (tmp_path / "img_Step_accuracy.json").exists()
+
+
+def test_integrator_making_its_own_rows_renders_them_uniformly_and_says_why(tmp_path, capfd):
+    image = render_image(LazyIntegrator(str(tmp_path / "img")), fov90_scene(4, 2),
+                         workers=1, samples_per_pixel=4, adaptive=True)
+    assert image[1, 3] == pytest.approx([3 / 4, 1 / 2, 0.0])
+    captured = capfd.readouterr()
+    assert "LazyIntegrator" in captured.err and "render_row" in captured.err
+    assert "No error estimate" in captured.out
+    assert not (tmp_path / "img_Lazy_accuracy.json").exists()
+
+
+@pytest.mark.parametrize("options, named", [
+    *[({"adaptive": True, "tolerance": value}, "tolerance")
+      for value in (-0.01, 1.5, math.nan, math.inf, "0.1", True, None)],
+    ({"adaptive": "yes"}, "adaptive"),
+    ({"tolerance": -1.0}, "tolerance"),
+    ({"adaptive": True, "samples_per_pixel": 1}, "samples_per_pixel")])
+def test_bad_adaptive_option_raises_value_error_naming_it(tmp_path, options, named):
+    integrator = PhongIntegrator(str(tmp_path / "out" / "img"))
+    integrator.add_scene(sphere_test_scene(width=4, height=4))
+    options.setdefault("samples_per_pixel", 4)
+    with pytest.raises(ValueError, match=named):
+        integrator.render(progress=False, **options)
+    assert not (tmp_path / "out").exists()
 
 
 # ------------------------------------------------------------------------------------------
