@@ -362,10 +362,9 @@ class _Sightlines:
     ray may hit: u is the unit direction from the camera to the centre of a sphere around
     the object (from that centre to the light, for shadow rays), reach the cosine of the
     angle that sphere fills seen from the camera (or the light), so that only a ray whose
-    direction d has d.u >= reach can hit the object (reach -2 for an object with no
-    bounding sphere, or around the camera or light). The
-    spheres are a little larger than the objects (CLEARANCE times the scene's size), so
-    that rounding, and shadow rays starting just above a surface, stay inside.
+    direction d has d.u >= reach can hit the object (see _cone; reach -2 when nothing is
+    known). The spheres are a little larger than the objects (CLEARANCE times the scene's
+    size), so that rounding, and shadow rays starting just above a surface, stay inside.
 
     camera: every object, for rays from the camera. anywhere: every object, with no cone.
     lights_for(k): for each point light, (light, its x, y, z, the objects that can lie
@@ -438,8 +437,8 @@ def _lights(lights):
 
 
 def _scene_size(objects, lights):
-    """The largest coordinate of the scene's lights and built-in objects, at least the
-    distance 1 from the camera: the scale of the clearances of _may_block."""
+    """The largest coordinate of the scene's lights and built-in objects (1 when there are
+    none): the scale of the clearances of _Sightlines and _may_block."""
     size = 0.0
     for obj in objects:
         if type(obj) is Sphere:
