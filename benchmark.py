@@ -115,7 +115,9 @@ def flat_phong(scene) -> np.ndarray:
 
     It does the plain work of the course's algorithm: it tests every object for every
     camera ray and every shadow ray, where render() leaves out the objects a ray cannot
-    hit (Scene, _Sightlines)."""
+    hit (Scene, _Sightlines). The intersection tests are written out for camera and for
+    shadow rays alike, on purpose: a function for them is a call per test, which is what
+    this loop measures the framework without."""
     camera, objects = scene.camera, []
     for obj in scene.object_list:
         kd = obj.BRDF.kd
