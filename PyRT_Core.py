@@ -247,7 +247,8 @@ class Scene:
         sx, sy, sz = px + nx * offset, py + ny * offset, pz + nz * offset
         seen = []
         sightlines = self._known if self._still else self._sightlines()
-        for light, x, y, z, blockers in sightlines.lights_for(hit.primitive_index):
+        lights = sightlines.per_object.get(hit.primitive_index, sightlines.unculled)
+        for light, x, y, z, blockers in lights:
             lx, ly, lz = x - px, y - py, z - pz
             # The light's height above the surface: at or below `offset` it is behind the
             # surface or lies on it, and lights no part of it.
@@ -367,8 +368,9 @@ class _Sightlines:
     size), so that rounding, and shadow rays starting just above a surface, stay inside.
 
     camera: every object, for rays from the camera. anywhere: every object, with no cone.
-    lights_for(k): for each point light, (light, its x, y, z, the objects that can lie
-    between it and a point of object k (_may_block), with their cones from the light)."""
+    per_object[k]: for each point light, (light, its x, y, z, the objects that can lie
+    between it and a point of object k (_may_block), with their cones from the light).
+    unculled: the same with every object, for a point of no object of the list."""
 
     __slots__ = ("changes", "objects", "lights", "camera", "anywhere", "per_object",
                  "unculled", "near", "t_min")
@@ -390,18 +392,13 @@ class _Sightlines:
         self.anywhere = [(obj, index, 0.0, 0.0, 0.0, -2.0) for index, obj in enumerate(objects)]
         # Shadow rays run towards their light: their direction d must have -d in the cone
         # seen from the light, that is d.(-u) >= reach.
-        self.per_object = [[(light, x, y, z, seen_from(
+        self.per_object = {k: [(light, x, y, z, seen_from(
             light.pos, -1.0, lambda obj: _may_block(obj, blocked, light.pos, scale)))
-            for light, x, y, z in self.lights] for blocked in objects]
+            for light, x, y, z in self.lights] for k, blocked in enumerate(objects)}
         self.unculled = [(light, x, y, z, seen_from(light.pos, -1.0))
                          for light, x, y, z in self.lights]
         self.near = LIGHT_MATCH * scale
         self.t_min = SHADOW_T_MIN * scale
-
-    def lights_for(self, k):
-        """The lights and their possible blockers for a point of object k; every object
-        when k is not an index of object_list."""
-        return self.per_object[k] if 0 <= k < len(self.per_object) else self.unculled
 
     def fit(self, scene):
         """Whether the scene is still the one these lists were worked out for: the same
@@ -595,6 +592,18 @@ class Primitive(ABC):
         return None
 
 
+def _hit(px, py, pz, nx, ny, nz, t):
+    """HitData(True, Vector3D(px, py, pz), Vector3D(nx, ny, nz), t), built without calling
+    the three __init__ methods: closest_hit makes one for nearly every pixel, and this
+    costs half as much (see the speed note of PyRT_Common)."""
+    p, n, hit = _new(Vector3D), _new(Vector3D), _new(HitData)
+    p.x, p.y, p.z = px, py, pz
+    n.x, n.y, n.z = nx, ny, nz
+    hit.has_hit, hit.hit_point, hit.normal, hit.hit_distance = True, p, n, t
+    hit.primitive_index = -1
+    return hit
+
+
 class _FastPrimitive(Primitive):
     """A built-in primitive: intersect() is the public face of _distance and _hit_data."""
 
@@ -672,8 +681,7 @@ class Sphere(_FastPrimitive):
             nx, ny, nz = vx / length, vy / length, vz / length
         # Rounding leaves o + d*t slightly off the surface; the point along the normal at
         # exactly one radius from the centre is on it.
-        return HitData(True, Vector3D(cx + nx * r, cy + ny * r, cz + nz * r),
-                       Vector3D(nx, ny, nz), t)
+        return _hit(cx + nx * r, cy + ny * r, cz + nz * r, nx, ny, nz, t)
 
 
 class InfinitePlane(_FastPrimitive):
@@ -707,8 +715,7 @@ class InfinitePlane(_FastPrimitive):
 
     def _hit_data(self, ox, oy, oz, dx, dy, dz, t):
         nx, ny, nz, _ = self._k
-        return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
-                       Vector3D(nx, ny, nz), t)
+        return _hit(ox + dx * t, oy + dy * t, oz + dz * t, nx, ny, nz, t)
 
 
 class Parallelogram(_FastPrimitive):
@@ -775,8 +782,7 @@ class Parallelogram(_FastPrimitive):
         nx, ny, nz, _ = self._k
         if dx * nx + dy * ny + dz * nz > 0.0:  # the ray comes from behind: face it
             nx, ny, nz = -nx, -ny, -nz
-        return HitData(True, Vector3D(ox + dx * t, oy + dy * t, oz + dz * t),
-                       Vector3D(nx, ny, nz), t)
+        return _hit(ox + dx * t, oy + dy * t, oz + dz * t, nx, ny, nz, t)
 
 
 # ------------------------------------------------------------------------------------------
