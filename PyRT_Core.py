@@ -147,8 +147,8 @@ class Scene:
         self.i_a = RGBColor(0.0, 0.0, 0.0)
         self._known = None  # see _sightlines
         self._still = False  # see unchanged
-        self._last_hit = (None,)  # see closest_hit and _blockers
-        self._next_light = 0  # see _blockers
+        self._last_hit = (None,)  # see closest_hit and any_hit
+        self._next_light = 0  # see any_hit
 
     def set_ambient(self, i_a):
         self.i_a = _check_color("Scene.set_ambient", "i_a", i_a)
@@ -185,17 +185,35 @@ class Scene:
         """True when the ray hits any object at a distance in [ray.t_min, ray.t_max].
 
         A shadow ray of the Phong model, from the hit point that closest_hit returned last
-        to a point light, tests only the objects that can be in its way (_blockers)."""
+        to a point light, tests only the objects that can lie between that object and that
+        light (_Sightlines). It is taken for one when it starts at that very point,
+        unchanged, in the scene as it was, ignores its first stretch as shadow rays do
+        (longer than the rounding error of where it crosses a plane it starts on), and
+        ends at a light's position to within rounding."""
         o, d = ray.o, ray.d
         dx, dy, dz = d.x, d.y, d.z
         if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:  # also catches NaN
             dx, dy, dz = _unit(d)
         ox, oy, oz, t_min, t_max = o.x, o.y, o.z, ray.t_min, ray.t_max
-        last = self._last_hit
-        if o is last[0]:
-            entries = self._blockers(last, ox, oy, oz, dx, dy, dz, t_min, t_max)
-        else:
-            entries = (self._known if self._still else self._sightlines()).anywhere
+        sightlines = self._known if self._still else self._sightlines()
+        entries = sightlines.anywhere
+        last = self._last_hit  # (point, its x, y, z, sightlines, object index)
+        if (o is last[0] and ox == last[1] and oy == last[2] and oz == last[3]
+                and last[4] is sightlines and t_min >= sightlines.t_min):
+            lights = sightlines.per_object[last[5]]
+            ex, ey, ez = ox + dx * t_max, oy + dy * t_max, oz + dz * t_max
+            near = sightlines.near
+            i = self._next_light  # shadow rays come light after light: try the next first
+            for _ in lights:
+                if i >= len(lights):
+                    i = 0
+                _, lx, ly, lz, blockers = lights[i]
+                i += 1
+                if (-near <= lx - ex <= near and -near <= ly - ey <= near
+                        and -near <= lz - ez <= near):
+                    self._next_light = i
+                    entries = blockers
+                    break
         for obj, _, ux, uy, uz, reach in entries:
             if dx * ux + dy * uy + dz * uz >= reach and (
                     obj._distance(ox, oy, oz, dx, dy, dz, t_min, t_max) is not None):
@@ -287,31 +305,6 @@ class Scene:
         if not self._still and (sightlines is None or not sightlines.fit(self)):
             sightlines = self._known = _Sightlines(self)
         return sightlines
-
-    def _blockers(self, last, ox, oy, oz, dx, dy, dz, t_min, t_max):
-        """The objects any_hit tests for a ray from the point of the last closest_hit (last
-        is what closest_hit kept of it): those that can lie in its way when the ray ends at
-        a point light (_Sightlines), all of them otherwise.
-
-        The ray must start at that very point, unchanged, in the scene as it was, and
-        ignore its first stretch (t_min) as shadow rays do, longer than the rounding error
-        of where it crosses a plane it starts on; its end must be a light's position to
-        within rounding."""
-        _, x, y, z, sightlines, k = last
-        if (ox != x or oy != y or oz != z or not t_min >= sightlines.t_min
-                or sightlines is not (self._known if self._still else self._sightlines())):
-            return self._sightlines().anywhere
-        lights = sightlines.per_object[k]
-        ex, ey, ez = ox + dx * t_max, oy + dy * t_max, oz + dz * t_max
-        near = sightlines.near
-        # Shadow rays come light after light: try the one after the last one found first.
-        first = self._next_light
-        for i in range(first, first + len(lights)):
-            _, lx, ly, lz, blockers = lights[i % len(lights)]
-            if -near <= lx - ex <= near and -near <= ly - ey <= near and -near <= lz - ez <= near:
-                self._next_light = i % len(lights) + 1
-                return blockers
-        return sightlines.anywhere
 
     def set_pixel(self, pixel_val, x, y):
         """Stores the RGBColor pixel_val at column x, row y of rendered_image."""
