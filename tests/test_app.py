@@ -7,6 +7,7 @@ import json
 import math
 import re
 import shutil
+import sys
 from pathlib import Path, PurePosixPath, PureWindowsPath
 
 import matplotlib.pyplot as plt
@@ -222,6 +223,77 @@ def test_bad_option_exits_with_a_usage_error_naming_it(tmp_path, arguments, name
     assert result.stderr.startswith("usage:")
     assert re.search(named, result.stderr), result.stderr
     assert not (tmp_path / "o").exists()
+
+
+# ------------------------------------------------------------------------------------------
+# The command line, read in this process
+# ------------------------------------------------------------------------------------------
+HELP_REFERENCE = REFERENCE_DIR / "app_help.txt"
+
+
+@pytest.fixture
+def command_line(monkeypatch):
+    """parse_args as `python AppRenderer.py` runs it, in a terminal 100 columns wide."""
+    monkeypatch.setattr(sys, "argv", ["AppRenderer.py"])
+    monkeypatch.setenv("COLUMNS", "100")
+    return AppRenderer.parse_args
+
+
+def test_help_is_the_reference_help(command_line, capsys):
+    # tests/reference/app_help.txt holds the help a student sees, checked against the
+    # README's table of options: the same options, defaults and meanings. The words are
+    # compared, not the layout, which differs a little between Python versions.
+    with pytest.raises(SystemExit) as exited:
+        command_line(["--help"])
+    assert exited.value.code == 0
+    help_text = capsys.readouterr().out
+    assert help_text.split() == HELP_REFERENCE.read_text(encoding="utf-8").split()
+
+
+def test_no_options_mean_the_defaults_of_the_readme(command_line):
+    assert vars(command_line([])) == {
+        "integrator": "phong", "scene": "cornell", "width": 500, "height": 500,
+        "max_depth": None,  # the depth integrator's own, 10
+        "out": AppRenderer.DIRECTORY, "workers": None, "spp": 1, "adaptive": False,
+        "tolerance": None,  # ADAPTIVE_TOLERANCE, applied by main
+        "no_window": False, "all_figures": False}
+    assert Path(AppRenderer.DIRECTORY) == REPO / "out"
+
+
+def usage_error(command_line, capsys, argv):
+    """The last line that parse_args(argv) writes before it exits with status 2."""
+    with pytest.raises(SystemExit) as exited:
+        command_line(argv)
+    assert exited.value.code == 2
+    err = capsys.readouterr().err
+    assert err.startswith("usage: AppRenderer.py ")
+    return err.splitlines()[-1]
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--spp", "two"], "argument --spp: must be a whole number greater than 0, got 'two'"),
+    (["--width", "2.5"], "argument --width: must be a whole number greater than 0, got '2.5'"),
+    (["--workers", "0"], "argument --workers: must be a whole number greater than 0, got '0'"),
+    (["--max-depth", "-3"], "argument --max-depth: must be a number greater than 0, got '-3'"),
+    (["--max-depth", "two"], "argument --max-depth: must be a number greater than 0, got 'two'"),
+    (["--spp", "4", "--adaptive", "--tolerance", "two"],
+     "argument --tolerance: must be a number from 0 to 1, got 'two'"),
+    (["--spp", "4", "--adaptive", "--tolerance", "1.5"],
+     "argument --tolerance: must be a number from 0 to 1, got '1.5'"),
+    (["--adaptive"],
+     "argument --adaptive: needs --spp N with N of 2 or more, the most rays a pixel may get"),
+    (["--spp", "4", "--tolerance", "0.1"], "argument --tolerance: only applies with --adaptive"),
+])
+def test_a_bad_command_line_gets_a_message_that_says_what_to_fix(command_line, capsys, argv,
+                                                                 message):
+    assert usage_error(command_line, capsys, argv) == f"AppRenderer.py: error: {message}"
+
+
+def test_adaptive_accepts_two_samples_and_a_tolerance_from_0_to_1(command_line):
+    # "N of 2 or more" and "a number from 0 to 1": both ends included
+    args = command_line(["--spp", "2", "--adaptive", "--tolerance", "1"])
+    assert (args.spp, args.adaptive, args.tolerance) == (2, True, 1.0)
+    assert command_line(["--spp", "2", "--adaptive", "--tolerance", "0"]).tolerance == 0.0
 
 
 # ------------------------------------------------------------------------------------------
