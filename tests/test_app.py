@@ -8,6 +8,7 @@ import math
 import re
 import shutil
 import sys
+import time
 from pathlib import Path, PurePosixPath, PureWindowsPath
 
 import matplotlib.pyplot as plt
@@ -197,13 +198,40 @@ def test_all_figures_at_500_pixels_match_the_course_and_write_the_sheet(all_figu
 
 
 def test_a_figure_without_a_reference_is_reported_not_raised(tmp_path, capsys):
+    # the format of the README: a heading, one indented line per figure, the sheet's path
     png = REFERENCE_DIR / "figure2_lazy.png"
     sheet = AppRenderer.compare_with_course({"figure2_lazy": png, "figure9_extra": png},
                                             tmp_path, (500, 500))
     assert sheet == tmp_path / "figures_vs_reference.png" and sheet.is_file()
-    output = capsys.readouterr().out
-    assert "figure2_lazy: matches" in output
-    assert "figure9_extra: no reference image to compare with" in output
+    assert capsys.readouterr().out.splitlines() == [
+        "Compared with the course's figures (tests/reference/):",
+        "  figure2_lazy: matches (largest difference 0/255)",
+        "  figure9_extra: no reference image to compare with "
+        "(tests/reference/figure9_extra.png is missing)",
+        f"Saved {sheet}: each figure beside the course's, and their difference"]
+
+
+def test_compare_with_course_warns_that_more_rays_per_pixel_change_the_edges(
+        tmp_path, capsys, monkeypatch):
+    sheets = []  # the sheet itself is tested in test_compare.py
+    monkeypatch.setattr(AppRenderer, "write_sheet",
+                        lambda comparisons, path: sheets.append(path) or path)
+    renders = {"figure2_lazy": REFERENCE_DIR / "figure2_lazy.png"}
+    AppRenderer.compare_with_course(renders, tmp_path, (500, 500), samples_per_pixel=4)
+    assert capsys.readouterr().out.splitlines()[:3] == [
+        "Compared with the course's figures (tests/reference/):",
+        "(the figures have one ray per pixel: with more, the edges differ from them)",
+        "  figure2_lazy: matches (largest difference 0/255)"]
+    assert sheets == [tmp_path / "figures_vs_reference.png"]
+
+
+def test_compare_with_course_skips_images_of_another_size_and_says_why(tmp_path, capsys):
+    renders = {"figure2_lazy": REFERENCE_DIR / "figure2_lazy.png"}
+    assert AppRenderer.compare_with_course(renders, tmp_path, (10, 12)) is None
+    assert capsys.readouterr().out == (
+        "The course's reference images are 500 x 500 pixels and these 10 x 12: not "
+        "compared with them (render at the default size to compare).\n")
+    assert list(tmp_path.iterdir()) == []
 
 
 @pytest.mark.parametrize("arguments, named", [
@@ -550,6 +578,21 @@ def test_workers_and_spp_options_reach_render(app, render_calls, options, worker
     assert render_calls[0]["adaptive"] is False
 
 
+def test_render_renders_once_with_one_centre_ray_per_pixel_and_says_where_the_image_is(
+        tmp_path, capsys, render_calls):
+    integrator = LazyIntegrator(str(tmp_path / "img"))
+    start = time.perf_counter()
+    png = AppRenderer.render(integrator, sphere_test_scene(width=4, height=3))
+    elapsed = time.perf_counter() - start
+    assert [(call["workers"], call["samples_per_pixel"], call["adaptive"])
+            for call in render_calls] == [(None, 1, False)]
+    assert png == str(tmp_path / "img_Lazy.png") and Path(png).is_file()
+    timing, saved = capsys.readouterr().out.splitlines()
+    seconds = re.fullmatch(r"Rendering time: (\d+\.\d\d) s", timing)
+    assert seconds and float(seconds[1]) <= round(elapsed, 2) + 0.01
+    assert saved == f"Saved {png} (and .npy, .hdr)"
+
+
 @pytest.mark.parametrize("options, tolerance", [
     (["--adaptive"], ADAPTIVE_TOLERANCE), (["--adaptive", "--tolerance", "0.1"], 0.1),
     (["--adaptive", "--tolerance", "0"], 0.0)])
@@ -610,6 +653,39 @@ def test_all_figures_writes_the_six_figure_images(app, tmp_path, capsys):
         integrator = make(str(tmp_path / "library" / "rendered_image"))
         assert np.array_equal(np.load(app.out / f"rendered_image_{name}.npy"),
                               library_image(integrator, scene, 10, 10)), name
+
+
+@pytest.fixture
+def course_comparisons(monkeypatch):
+    """The arguments of every compare_with_course call in main, which still runs."""
+    calls = []
+    original = AppRenderer.compare_with_course
+
+    def recording(renders, folder, size, samples_per_pixel=1):
+        calls.append((renders, folder, size, samples_per_pixel))
+        return original(renders, folder, size, samples_per_pixel)
+
+    monkeypatch.setattr(AppRenderer, "compare_with_course", recording)
+    return calls
+
+
+def test_all_figures_compares_every_figure_and_shows_the_last_when_not_compared(
+        app, course_comparisons):
+    # At 4 x 4 pixels there is no comparison sheet: the window shows Figure 5
+    app.run("--all-figures", "--width", 4, "--height", 4, "--spp", 2,
+            image="rendered_image_Phong_figure1")
+    renders = {name: str(app.out / f"rendered_image_{image}.png")
+               for name, image in zip(FIGURE_NAMES, FIGURES)}
+    assert course_comparisons == [(renders, str(app.out), (4, 4), 2)]
+    assert [Path(png) for png in app.shown] == [app.out / "rendered_image_Phong_figure5.png"]
+
+
+def test_all_figures_shows_the_comparison_sheet(app, monkeypatch, tmp_path):
+    sheet = tmp_path / "figures_vs_reference.png"  # as compare_with_course writes it
+    monkeypatch.setattr(AppRenderer, "compare_with_course", lambda *args: sheet)
+    app.run("--all-figures", "--width", 2, "--height", 2,
+            image="rendered_image_Phong_figure1")
+    assert app.shown == [sheet]
 
 
 BAD_NUMBERS = ["0", "-3", "two"]
