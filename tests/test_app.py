@@ -10,7 +10,10 @@ import shutil
 import sys
 import time
 from pathlib import Path, PurePosixPath, PureWindowsPath
+from types import SimpleNamespace
 
+import cv2
+import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
@@ -91,6 +94,18 @@ def test_sphere_test_scene_area_light_replaces_the_point_light():
     assert_parallelogram(light, (-4, 6, -1), (8, 0, 0), (0, 0, -8))
     assert rgb(light.emission) == (3.5, 3.5, 3.5)
     assert rgb(light.get_BRDF().kd) == (0, 0, 0)
+
+
+def test_sphere_test_scene_environment_map_is_the_one_next_to_the_script(monkeypatch,
+                                                                         tmp_path):
+    assert Path(AppRenderer.ENV_MAP_PATH) == REPO / "env_maps" / "environment.hdr"
+    # a 1 x 2 map in its place: left texel red, right texel blue (OpenCV stores BGR)
+    env_map = tmp_path / "environment.hdr"
+    cv2.imwrite(str(env_map), np.array([[[0, 0, 2], [4, 0, 0]]], dtype=np.float32))
+    monkeypatch.setattr(AppRenderer, "ENV_MAP_PATH", str(env_map))
+    scene = AppRenderer.sphere_test_scene(use_env_map=True)
+    assert scene.env_map.image.tolist() == [[[2, 0, 0], [0, 0, 4]]]
+    assert AppRenderer.sphere_test_scene().env_map is None
 
 
 def test_cornell_box_scene_has_the_course_numbers():
@@ -335,6 +350,7 @@ FRAME_WIDTH, FRAME_HEIGHT = AppRenderer.WINDOW_FRAME
     ((1280 - FRAME_WIDTH, 1024 - FRAME_HEIGHT), (1280, 1024), 1.0),     # fits exactly
     ((500, 500), (400, 300), (300 - FRAME_HEIGHT) / 500),               # too tall
     ((2000, 100), (1280, 1024), (1280 - FRAME_WIDTH) / 2000),           # too wide
+    ((500, 500), (FRAME_WIDTH - 10, 1024), 1 / 500),  # no room at all: one pixel wide
 ])
 def test_window_scale_is_one_unless_the_image_does_not_fit(image, screen, scale):
     assert AppRenderer.window_scale(image, screen) == pytest.approx(scale)
@@ -401,8 +417,112 @@ def test_show_scales_an_image_too_large_for_the_screen_and_says_so(monkeypatch, 
         output = capsys.readouterr().out
         assert "500 x 500" in output and "400 x 300" in output
         assert "scaled to 28%" in output
+        # scaled down, the pixels that share a screen pixel are averaged
+        assert figure.axes[0].images[0].get_interpolation() == "antialiased"
     finally:
         plt.close(figure)
+
+
+def test_show_without_a_display_only_says_that_the_image_is_saved(monkeypatch, capsys,
+                                                                  png_500):
+    monkeypatch.setattr(AppRenderer, "_has_display", lambda: False)
+    monkeypatch.setattr(plt, "show", lambda: pytest.fail("plt.show() without a display"))
+    figures = plt.get_fignums()
+    AppRenderer.show(str(png_500))
+    assert capsys.readouterr().out == "No display: the image is saved, not shown.\n"
+    assert plt.get_fignums() == figures
+
+
+def test_show_creates_its_window_one_pixel_small_so_that_it_can_shrink_to_the_image(
+        monkeypatch, png_500):
+    # matplotlib's toolbar keeps a window at least as wide as its figure was when the
+    # window was created: the screen is measured on a figure one pixel wide and high.
+    measured = []
+
+    def screen_size(figure):
+        measured.append((figure, size_in_pixels(figure)))
+        return (400, 300)
+
+    shown = []
+    monkeypatch.setattr(AppRenderer, "_has_display", lambda: True)
+    monkeypatch.setattr(AppRenderer, "_screen_size", screen_size)
+    monkeypatch.setattr(plt, "show", lambda: shown.append(plt.gcf()))
+    AppRenderer.show(str(png_500))
+    [figure] = shown
+    try:
+        assert measured == [(figure, (1, 1))]
+        assert size_in_pixels(figure) == (AppRenderer.MIN_WINDOW_WIDTH, 140)
+    finally:
+        plt.close(figure)
+
+
+def test_show_draws_the_image_pixel_for_pixel_when_the_screen_size_is_unknown(
+        monkeypatch, capsys, png_500):
+    figure = shown_figure(monkeypatch, png_500, None)
+    try:
+        assert size_in_pixels(figure) == (500, 500)
+        assert image_box_in_pixels(figure) == (0, 0, 500, 500)
+        assert figure.axes[0].images[0].get_interpolation() == "none"
+        assert "scaled" not in capsys.readouterr().out
+    finally:
+        plt.close(figure)
+
+
+def test_show_keeps_the_whole_image_in_a_window_resized_by_hand(monkeypatch, png_500):
+    figure = shown_figure(monkeypatch, png_500, (1280, 1024))
+    try:
+        # made half as wide by hand: the image shrinks to fit, whole, at the left edge,
+        # and the window keeps the size it was given
+        figure.set_size_inches(250 / figure.dpi, 500 / figure.dpi)
+        figure.canvas.callbacks.process("resize_event",
+                                        ResizeEvent("resize_event", figure.canvas))
+        assert size_in_pixels(figure) == (250, 500)
+        assert image_box_in_pixels(figure) == (0, 125, 250, 250)
+    finally:
+        plt.close(figure)
+
+
+def test_show_keeps_one_row_of_an_image_scaled_to_less_than_a_pixel_high(monkeypatch,
+                                                                           tmp_path):
+    png = tmp_path / "one_row.png"
+    plt.imsave(png, np.zeros((1, 4000, 3)))
+    # (1280 - 40) / 4000 = 0.31 of 4000 pixels wide, and of one pixel high
+    figure = shown_figure(monkeypatch, png, (1280, 1024))
+    try:
+        assert size_in_pixels(figure) == (1240, 1)
+    finally:
+        plt.close(figure)
+
+
+def tk_like_figure(window):
+    return SimpleNamespace(canvas=SimpleNamespace(manager=SimpleNamespace(window=window)))
+
+
+def test_screen_size_is_what_a_tk_window_reports():
+    window = SimpleNamespace(winfo_screenwidth=lambda: 1920, winfo_screenheight=lambda: 1080)
+    assert AppRenderer._screen_size(tk_like_figure(window)) == (1920, 1080)
+
+
+def test_screen_size_is_unknown_without_a_tk_window():
+    figure = plt.figure()  # the tests' backend, Agg: a window manager without a window
+    try:
+        assert AppRenderer._screen_size(figure) is None
+    finally:
+        plt.close(figure)
+    assert AppRenderer._screen_size(tk_like_figure(object())) is None  # not Tk's window
+
+
+# matplotlib's backends that write files, and some that open windows, as
+# matplotlib.get_backend() may name them
+@pytest.mark.parametrize("backend, display", [
+    *[(name, False) for name in ["agg", "Agg", "pdf", "ps", "svg", "pgf", "cairo",
+                                 "template"]],
+    *[(name, True) for name in ["TkAgg", "tkagg", "QtAgg", "MacOSX", "GTK4Agg", "WXAgg"]],
+])
+def test_has_display_is_false_exactly_for_backends_without_windows(monkeypatch, backend,
+                                                                  display):
+    monkeypatch.setattr(matplotlib, "get_backend", lambda: backend)
+    assert AppRenderer._has_display() is display
 
 
 # ------------------------------------------------------------------------------------------
