@@ -7,8 +7,13 @@ import json
 import math
 import re
 import shutil
+import sys
+import time
 from pathlib import Path, PurePosixPath, PureWindowsPath
+from types import SimpleNamespace
 
+import cv2
+import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
@@ -89,6 +94,18 @@ def test_sphere_test_scene_area_light_replaces_the_point_light():
     assert_parallelogram(light, (-4, 6, -1), (8, 0, 0), (0, 0, -8))
     assert rgb(light.emission) == (3.5, 3.5, 3.5)
     assert rgb(light.get_BRDF().kd) == (0, 0, 0)
+
+
+def test_sphere_test_scene_environment_map_is_the_one_next_to_the_script(monkeypatch,
+                                                                         tmp_path):
+    assert Path(AppRenderer.ENV_MAP_PATH) == REPO / "env_maps" / "environment.hdr"
+    # a 1 x 2 map in its place: left texel red, right texel blue (OpenCV stores BGR)
+    env_map = tmp_path / "environment.hdr"
+    cv2.imwrite(str(env_map), np.array([[[0, 0, 2], [4, 0, 0]]], dtype=np.float32))
+    monkeypatch.setattr(AppRenderer, "ENV_MAP_PATH", str(env_map))
+    scene = AppRenderer.sphere_test_scene(use_env_map=True)
+    assert scene.env_map.image.tolist() == [[[2, 0, 0], [0, 0, 4]]]
+    assert AppRenderer.sphere_test_scene().env_map is None
 
 
 def test_cornell_box_scene_has_the_course_numbers():
@@ -196,13 +213,40 @@ def test_all_figures_at_500_pixels_match_the_course_and_write_the_sheet(all_figu
 
 
 def test_a_figure_without_a_reference_is_reported_not_raised(tmp_path, capsys):
+    # the format of the README: a heading, one indented line per figure, the sheet's path
     png = REFERENCE_DIR / "figure2_lazy.png"
     sheet = AppRenderer.compare_with_course({"figure2_lazy": png, "figure9_extra": png},
                                             tmp_path, (500, 500))
     assert sheet == tmp_path / "figures_vs_reference.png" and sheet.is_file()
-    output = capsys.readouterr().out
-    assert "figure2_lazy: matches" in output
-    assert "figure9_extra: no reference image to compare with" in output
+    assert capsys.readouterr().out.splitlines() == [
+        "Compared with the course's figures (tests/reference/):",
+        "  figure2_lazy: matches (largest difference 0/255)",
+        "  figure9_extra: no reference image to compare with "
+        "(tests/reference/figure9_extra.png is missing)",
+        f"Saved {sheet}: each figure beside the course's, and their difference"]
+
+
+def test_compare_with_course_warns_that_more_rays_per_pixel_change_the_edges(
+        tmp_path, capsys, monkeypatch):
+    sheets = []  # the sheet itself is tested in test_compare.py
+    monkeypatch.setattr(AppRenderer, "write_sheet",
+                        lambda comparisons, path: sheets.append(path) or path)
+    renders = {"figure2_lazy": REFERENCE_DIR / "figure2_lazy.png"}
+    AppRenderer.compare_with_course(renders, tmp_path, (500, 500), samples_per_pixel=4)
+    assert capsys.readouterr().out.splitlines()[:3] == [
+        "Compared with the course's figures (tests/reference/):",
+        "(the figures have one ray per pixel: with more, the edges differ from them)",
+        "  figure2_lazy: matches (largest difference 0/255)"]
+    assert sheets == [tmp_path / "figures_vs_reference.png"]
+
+
+def test_compare_with_course_skips_images_of_another_size_and_says_why(tmp_path, capsys):
+    renders = {"figure2_lazy": REFERENCE_DIR / "figure2_lazy.png"}
+    assert AppRenderer.compare_with_course(renders, tmp_path, (10, 12)) is None
+    assert capsys.readouterr().out == (
+        "The course's reference images are 500 x 500 pixels and these 10 x 12: not "
+        "compared with them (render at the default size to compare).\n")
+    assert list(tmp_path.iterdir()) == []
 
 
 @pytest.mark.parametrize("arguments, named", [
@@ -225,6 +269,77 @@ def test_bad_option_exits_with_a_usage_error_naming_it(tmp_path, arguments, name
 
 
 # ------------------------------------------------------------------------------------------
+# The command line, read in this process
+# ------------------------------------------------------------------------------------------
+HELP_REFERENCE = REFERENCE_DIR / "app_help.txt"
+
+
+@pytest.fixture
+def command_line(monkeypatch):
+    """parse_args as `python AppRenderer.py` runs it, in a terminal 100 columns wide."""
+    monkeypatch.setattr(sys, "argv", ["AppRenderer.py"])
+    monkeypatch.setenv("COLUMNS", "100")
+    return AppRenderer.parse_args
+
+
+def test_help_is_the_reference_help(command_line, capsys):
+    # tests/reference/app_help.txt holds the help a student sees, checked against the
+    # README's table of options: the same options, defaults and meanings. The words are
+    # compared, not the layout, which differs a little between Python versions.
+    with pytest.raises(SystemExit) as exited:
+        command_line(["--help"])
+    assert exited.value.code == 0
+    help_text = capsys.readouterr().out
+    assert help_text.split() == HELP_REFERENCE.read_text(encoding="utf-8").split()
+
+
+def test_no_options_mean_the_defaults_of_the_readme(command_line):
+    assert vars(command_line([])) == {
+        "integrator": "phong", "scene": "cornell", "width": 500, "height": 500,
+        "max_depth": None,  # the depth integrator's own, 10
+        "out": AppRenderer.DIRECTORY, "workers": None, "spp": 1, "adaptive": False,
+        "tolerance": None,  # ADAPTIVE_TOLERANCE, applied by main
+        "no_window": False, "all_figures": False}
+    assert Path(AppRenderer.DIRECTORY) == REPO / "out"
+
+
+def usage_error(command_line, capsys, argv):
+    """The last line that parse_args(argv) writes before it exits with status 2."""
+    with pytest.raises(SystemExit) as exited:
+        command_line(argv)
+    assert exited.value.code == 2
+    err = capsys.readouterr().err
+    assert err.startswith("usage: AppRenderer.py ")
+    return err.splitlines()[-1]
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--spp", "two"], "argument --spp: must be a whole number greater than 0, got 'two'"),
+    (["--width", "2.5"], "argument --width: must be a whole number greater than 0, got '2.5'"),
+    (["--workers", "0"], "argument --workers: must be a whole number greater than 0, got '0'"),
+    (["--max-depth", "-3"], "argument --max-depth: must be a number greater than 0, got '-3'"),
+    (["--max-depth", "two"], "argument --max-depth: must be a number greater than 0, got 'two'"),
+    (["--spp", "4", "--adaptive", "--tolerance", "two"],
+     "argument --tolerance: must be a number from 0 to 1, got 'two'"),
+    (["--spp", "4", "--adaptive", "--tolerance", "1.5"],
+     "argument --tolerance: must be a number from 0 to 1, got '1.5'"),
+    (["--adaptive"],
+     "argument --adaptive: needs --spp N with N of 2 or more, the most rays a pixel may get"),
+    (["--spp", "4", "--tolerance", "0.1"], "argument --tolerance: only applies with --adaptive"),
+])
+def test_a_bad_command_line_gets_a_message_that_says_what_to_fix(command_line, capsys, argv,
+                                                                 message):
+    assert usage_error(command_line, capsys, argv) == f"AppRenderer.py: error: {message}"
+
+
+def test_adaptive_accepts_two_samples_and_a_tolerance_from_0_to_1(command_line):
+    # "N of 2 or more" and "a number from 0 to 1": both ends included
+    args = command_line(["--spp", "2", "--adaptive", "--tolerance", "1"])
+    assert (args.spp, args.adaptive, args.tolerance) == (2, True, 1.0)
+    assert command_line(["--spp", "2", "--adaptive", "--tolerance", "0"]).tolerance == 0.0
+
+
+# ------------------------------------------------------------------------------------------
 # The window
 # ------------------------------------------------------------------------------------------
 FRAME_WIDTH, FRAME_HEIGHT = AppRenderer.WINDOW_FRAME
@@ -235,6 +350,7 @@ FRAME_WIDTH, FRAME_HEIGHT = AppRenderer.WINDOW_FRAME
     ((1280 - FRAME_WIDTH, 1024 - FRAME_HEIGHT), (1280, 1024), 1.0),     # fits exactly
     ((500, 500), (400, 300), (300 - FRAME_HEIGHT) / 500),               # too tall
     ((2000, 100), (1280, 1024), (1280 - FRAME_WIDTH) / 2000),           # too wide
+    ((500, 500), (FRAME_WIDTH - 10, 1024), 1 / 500),  # no room at all: one pixel wide
 ])
 def test_window_scale_is_one_unless_the_image_does_not_fit(image, screen, scale):
     assert AppRenderer.window_scale(image, screen) == pytest.approx(scale)
@@ -301,8 +417,112 @@ def test_show_scales_an_image_too_large_for_the_screen_and_says_so(monkeypatch, 
         output = capsys.readouterr().out
         assert "500 x 500" in output and "400 x 300" in output
         assert "scaled to 28%" in output
+        # scaled down, the pixels that share a screen pixel are averaged
+        assert figure.axes[0].images[0].get_interpolation() == "antialiased"
     finally:
         plt.close(figure)
+
+
+def test_show_without_a_display_only_says_that_the_image_is_saved(monkeypatch, capsys,
+                                                                  png_500):
+    monkeypatch.setattr(AppRenderer, "_has_display", lambda: False)
+    monkeypatch.setattr(plt, "show", lambda: pytest.fail("plt.show() without a display"))
+    figures = plt.get_fignums()
+    AppRenderer.show(str(png_500))
+    assert capsys.readouterr().out == "No display: the image is saved, not shown.\n"
+    assert plt.get_fignums() == figures
+
+
+def test_show_creates_its_window_one_pixel_small_so_that_it_can_shrink_to_the_image(
+        monkeypatch, png_500):
+    # matplotlib's toolbar keeps a window at least as wide as its figure was when the
+    # window was created: the screen is measured on a figure one pixel wide and high.
+    measured = []
+
+    def screen_size(figure):
+        measured.append((figure, size_in_pixels(figure)))
+        return (400, 300)
+
+    shown = []
+    monkeypatch.setattr(AppRenderer, "_has_display", lambda: True)
+    monkeypatch.setattr(AppRenderer, "_screen_size", screen_size)
+    monkeypatch.setattr(plt, "show", lambda: shown.append(plt.gcf()))
+    AppRenderer.show(str(png_500))
+    [figure] = shown
+    try:
+        assert measured == [(figure, (1, 1))]
+        assert size_in_pixels(figure) == (AppRenderer.MIN_WINDOW_WIDTH, 140)
+    finally:
+        plt.close(figure)
+
+
+def test_show_draws_the_image_pixel_for_pixel_when_the_screen_size_is_unknown(
+        monkeypatch, capsys, png_500):
+    figure = shown_figure(monkeypatch, png_500, None)
+    try:
+        assert size_in_pixels(figure) == (500, 500)
+        assert image_box_in_pixels(figure) == (0, 0, 500, 500)
+        assert figure.axes[0].images[0].get_interpolation() == "none"
+        assert "scaled" not in capsys.readouterr().out
+    finally:
+        plt.close(figure)
+
+
+def test_show_keeps_the_whole_image_in_a_window_resized_by_hand(monkeypatch, png_500):
+    figure = shown_figure(monkeypatch, png_500, (1280, 1024))
+    try:
+        # made half as wide by hand: the image shrinks to fit, whole, at the left edge,
+        # and the window keeps the size it was given
+        figure.set_size_inches(250 / figure.dpi, 500 / figure.dpi)
+        figure.canvas.callbacks.process("resize_event",
+                                        ResizeEvent("resize_event", figure.canvas))
+        assert size_in_pixels(figure) == (250, 500)
+        assert image_box_in_pixels(figure) == (0, 125, 250, 250)
+    finally:
+        plt.close(figure)
+
+
+def test_show_keeps_one_row_of_an_image_scaled_to_less_than_a_pixel_high(monkeypatch,
+                                                                           tmp_path):
+    png = tmp_path / "one_row.png"
+    plt.imsave(png, np.zeros((1, 4000, 3)))
+    # (1280 - 40) / 4000 = 0.31 of 4000 pixels wide, and of one pixel high
+    figure = shown_figure(monkeypatch, png, (1280, 1024))
+    try:
+        assert size_in_pixels(figure) == (1240, 1)
+    finally:
+        plt.close(figure)
+
+
+def tk_like_figure(window):
+    return SimpleNamespace(canvas=SimpleNamespace(manager=SimpleNamespace(window=window)))
+
+
+def test_screen_size_is_what_a_tk_window_reports():
+    window = SimpleNamespace(winfo_screenwidth=lambda: 1920, winfo_screenheight=lambda: 1080)
+    assert AppRenderer._screen_size(tk_like_figure(window)) == (1920, 1080)
+
+
+def test_screen_size_is_unknown_without_a_tk_window():
+    figure = plt.figure()  # the tests' backend, Agg: a window manager without a window
+    try:
+        assert AppRenderer._screen_size(figure) is None
+    finally:
+        plt.close(figure)
+    assert AppRenderer._screen_size(tk_like_figure(object())) is None  # not Tk's window
+
+
+# matplotlib's backends that write files, and some that open windows, as
+# matplotlib.get_backend() may name them
+@pytest.mark.parametrize("backend, display", [
+    *[(name, False) for name in ["agg", "Agg", "pdf", "ps", "svg", "pgf", "cairo",
+                                 "template"]],
+    *[(name, True) for name in ["TkAgg", "tkagg", "QtAgg", "MacOSX", "GTK4Agg", "WXAgg"]],
+])
+def test_has_display_is_false_exactly_for_backends_without_windows(monkeypatch, backend,
+                                                                  display):
+    monkeypatch.setattr(matplotlib, "get_backend", lambda: backend)
+    assert AppRenderer._has_display() is display
 
 
 # ------------------------------------------------------------------------------------------
@@ -478,6 +698,21 @@ def test_workers_and_spp_options_reach_render(app, render_calls, options, worker
     assert render_calls[0]["adaptive"] is False
 
 
+def test_render_renders_once_with_one_centre_ray_per_pixel_and_says_where_the_image_is(
+        tmp_path, capsys, render_calls):
+    integrator = LazyIntegrator(str(tmp_path / "img"))
+    start = time.perf_counter()
+    png = AppRenderer.render(integrator, sphere_test_scene(width=4, height=3))
+    elapsed = time.perf_counter() - start
+    assert [(call["workers"], call["samples_per_pixel"], call["adaptive"])
+            for call in render_calls] == [(None, 1, False)]
+    assert png == str(tmp_path / "img_Lazy.png") and Path(png).is_file()
+    timing, saved = capsys.readouterr().out.splitlines()
+    seconds = re.fullmatch(r"Rendering time: (\d+\.\d\d) s", timing)
+    assert seconds and float(seconds[1]) <= round(elapsed, 2) + 0.01
+    assert saved == f"Saved {png} (and .npy, .hdr)"
+
+
 @pytest.mark.parametrize("options, tolerance", [
     (["--adaptive"], ADAPTIVE_TOLERANCE), (["--adaptive", "--tolerance", "0.1"], 0.1),
     (["--adaptive", "--tolerance", "0"], 0.0)])
@@ -538,6 +773,39 @@ def test_all_figures_writes_the_six_figure_images(app, tmp_path, capsys):
         integrator = make(str(tmp_path / "library" / "rendered_image"))
         assert np.array_equal(np.load(app.out / f"rendered_image_{name}.npy"),
                               library_image(integrator, scene, 10, 10)), name
+
+
+@pytest.fixture
+def course_comparisons(monkeypatch):
+    """The arguments of every compare_with_course call in main, which still runs."""
+    calls = []
+    original = AppRenderer.compare_with_course
+
+    def recording(renders, folder, size, samples_per_pixel=1):
+        calls.append((renders, folder, size, samples_per_pixel))
+        return original(renders, folder, size, samples_per_pixel)
+
+    monkeypatch.setattr(AppRenderer, "compare_with_course", recording)
+    return calls
+
+
+def test_all_figures_compares_every_figure_and_shows_the_last_when_not_compared(
+        app, course_comparisons):
+    # At 4 x 4 pixels there is no comparison sheet: the window shows Figure 5
+    app.run("--all-figures", "--width", 4, "--height", 4, "--spp", 2,
+            image="rendered_image_Phong_figure1")
+    renders = {name: str(app.out / f"rendered_image_{image}.png")
+               for name, image in zip(FIGURE_NAMES, FIGURES)}
+    assert course_comparisons == [(renders, str(app.out), (4, 4), 2)]
+    assert [Path(png) for png in app.shown] == [app.out / "rendered_image_Phong_figure5.png"]
+
+
+def test_all_figures_shows_the_comparison_sheet(app, monkeypatch, tmp_path):
+    sheet = tmp_path / "figures_vs_reference.png"  # as compare_with_course writes it
+    monkeypatch.setattr(AppRenderer, "compare_with_course", lambda *args: sheet)
+    app.run("--all-figures", "--width", 2, "--height", 2,
+            image="rendered_image_Phong_figure1")
+    assert app.shown == [sheet]
 
 
 BAD_NUMBERS = ["0", "-3", "two"]
