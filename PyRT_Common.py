@@ -12,6 +12,7 @@ of __init__ is made.
 """
 from abc import ABC, abstractmethod
 from math import acos, atan2, cos, floor, hypot, pi, sin, sqrt
+from numbers import Real
 from pathlib import Path
 
 import cv2
@@ -56,6 +57,13 @@ def _restore_state(obj, state):
 # ------------------------------------------------------------------------------------------
 # Vectors
 # ------------------------------------------------------------------------------------------
+def _shown(value):
+    """A component as a repr shows it: any number (int, numpy's float64, ...) as a plain
+    float, anything else as itself, so that a colour holding a vector or a string by
+    mistake shows that mistake in a message instead of failing to print."""
+    return repr(float(value)) if isinstance(value, Real) else repr(value)
+
+
 class Vector3D:
     """A point or direction in 3D space, (x, y, z).
 
@@ -118,7 +126,7 @@ class Vector3D:
         return iter((self.x, self.y, self.z))
 
     def __repr__(self):
-        return f"Vector3D({float(self.x)!r}, {float(self.y)!r}, {float(self.z)!r})"
+        return f"Vector3D({_shown(self.x)}, {_shown(self.y)}, {_shown(self.z)})"
 
 
 def Dot(a, b):
@@ -224,7 +232,7 @@ class RGBColor:
         return iter((self.r, self.g, self.b))
 
     def __repr__(self):
-        return f"RGBColor({float(self.r)!r}, {float(self.g)!r}, {float(self.b)!r})"
+        return f"RGBColor({_shown(self.r)}, {_shown(self.g)}, {_shown(self.b)})"
 
 
 # The shared colours, as the course has them: plain RGBColor objects. Code that changes one

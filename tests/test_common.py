@@ -400,3 +400,11 @@ def test_direction_a_rounding_error_past_a_pole_reads_the_pole_row(env_map, y, v
     direction = Vector3D(0.0, y, 0.0)
     assert env_map.euclideanToLatLong(direction)[1] == v
     assert env_map.getValue(direction).g == pytest.approx(row + 1.0, rel=1e-2)
+
+
+def test_repr_shows_a_component_that_is_not_a_number_as_it_is():
+    # A student's slip such as RGBColor(0.5, normal, 0.5) must print, so that error
+    # messages can show it; numbers of every kind still print as plain floats.
+    assert repr(RGBColor(0.5, Vector3D(0, 1, 0), "0.5")) == \
+        "RGBColor(0.5, Vector3D(0.0, 1.0, 0.0), '0.5')"
+    assert repr(Vector3D(np.float64(0.25), np.int64(2), None)) == "Vector3D(0.25, 2.0, None)"
