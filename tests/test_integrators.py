@@ -71,6 +71,13 @@ def test_depth_integrator_max_depth_defaults_to_10():
     assert DepthIntegrator("img", 5, "_far").get_filename() == "img_Depth_far"
 
 
+@pytest.mark.parametrize("max_depth", ["10", None, True, Vector3D(0.0, 0.0, 10.0)],
+                         ids=["str", "None", "bool", "Vector3D"])
+def test_depth_integrator_max_depth_must_be_a_number(max_depth):
+    with pytest.raises(ValueError, match="max_depth_ must be a positive finite distance"):
+        DepthIntegrator("unused", max_depth)
+
+
 def test_own_integrator_file_name_is_filename_plus_experiment_name():
     class Plain(Integrator):
         def compute_color(self, ray):
