@@ -83,7 +83,10 @@ def test_error_in_a_worker_process_is_raised_with_the_worker_traceback(tmp_path,
     integrator.add_scene(small_cornell_box(32))
     with pytest.raises(ZeroDivisionError, match="raised in a worker") as raised:
         integrator.render(workers=2, progress=False)
-    assert "finish_and_mark" in str(raised.value.__cause__)  # where the worker raised it
+    # where the worker raised it, as a traceback that starts on a line of its own
+    where = str(raised.value.__cause__)
+    assert where.startswith("\nTraceback (most recent call last):\n"), where
+    assert "finish_and_mark" in where
 
 
 class NeedsTwoArguments(Exception):
