@@ -5,6 +5,8 @@ import json
 import math
 import multiprocessing
 import os
+import pickle
+import signal
 import sys
 import time
 
@@ -102,6 +104,82 @@ def test_error_that_cannot_leave_a_worker_is_raised_as_its_text(tmp_path, worker
     integrator.add_scene(small_cornell_box(32))
     with pytest.raises(RuntimeError, match=r"NeedsTwoArguments: odd failure \(7\)"):
         integrator.render(workers=2, progress=False)
+
+
+# The worker process's function, called here in this process: it renders the blocks it
+# takes into the shared image, then sends one message.
+def run_worker(integrator, blocks, taken_before=0):
+    """Runs PyRT_Rendering._worker on integrator's image cut into blocks, after this process
+    took the first `taken_before` blocks: (the shared image, its finished flags, the
+    message the worker sent, the Ctrl+C handler the worker left)."""
+    camera = integrator.scene.camera
+    shared = PyRT_Rendering._SharedImage(multiprocessing.get_context(),
+                                         (camera.height, camera.width, 3), len(blocks))
+    for _ in range(taken_before):
+        shared.take()
+    receiver, sender = multiprocessing.Pipe(duplex=False)
+    ctrl_c = signal.getsignal(signal.SIGINT)
+    try:
+        PyRT_Rendering._worker(pickle.dumps(integrator), blocks,
+                               PyRT_Rendering._CourseRows(1), shared, sender)
+        worker_ctrl_c = signal.getsignal(signal.SIGINT)
+    finally:
+        signal.signal(signal.SIGINT, ctrl_c)
+        sender.close()
+    with receiver:
+        assert receiver.poll(0), "the worker sent no message"
+        message = receiver.recv()
+        with pytest.raises(EOFError):  # nothing more: one message
+            receiver.recv()
+    return shared.image(), shared.finished_blocks(), message, worker_ctrl_c
+
+
+def test_worker_renders_the_blocks_not_yet_taken_into_the_shared_image(tmp_path):
+    integrator = PixelGrey(str(tmp_path / "img"))
+    integrator.add_scene(fov90_scene(3, 4))
+    image, finished, message, ctrl_c = run_worker(integrator, [(0, 1), (1, 3), (3, 4)],
+                                                  taken_before=1)
+    assert message is None  # it stopped because every block was done
+    assert finished == [0, 1, 1]
+    assert not image[0].any()  # this process's block
+    for y in range(1, 4):
+        for x in range(3):
+            assert tuple(image[y, x]) == ((x + 10 * y) / 100,) * 3, (x, y)
+    assert ctrl_c == signal.SIG_IGN  # Ctrl+C is handled once, by the main process
+
+
+class FailsAtRow2(PixelGrey):
+    def grey(self, x, y):
+        if y == 2:
+            raise ZeroDivisionError(f"pixel ({x}, {y})")
+        return super().grey(x, y)
+
+
+def test_worker_sends_the_error_that_stopped_it_with_its_traceback(tmp_path):
+    integrator = FailsAtRow2(str(tmp_path / "img"))
+    integrator.add_scene(fov90_scene(3, 4))
+    image, finished, message, _ = run_worker(integrator, [(0, 2), (2, 4)])
+    error, where = message
+    assert type(error) is ZeroDivisionError and str(error) == "pixel (0, 2)"
+    assert where.startswith("Traceback (most recent call last):\n")
+    assert "in grey" in where and where.rstrip().endswith("ZeroDivisionError: pixel (0, 2)")
+    assert finished == [1, 0]  # the rows before the error are in the image
+    assert tuple(image[1, 2]) == (0.12,) * 3
+
+
+class FailsWithAnErrorPickleCannotRebuild(PixelGrey):
+    def grey(self, x, y):
+        raise NeedsTwoArguments("odd failure", 7)
+
+
+def test_worker_sends_an_error_that_cannot_travel_between_processes_as_its_text(tmp_path):
+    integrator = FailsWithAnErrorPickleCannotRebuild(str(tmp_path / "img"))
+    integrator.add_scene(fov90_scene(3, 4))
+    _, finished, (error, where), _ = run_worker(integrator, [(0, 4)])
+    assert type(error) is RuntimeError
+    assert str(error) == "NeedsTwoArguments: odd failure (7)"
+    assert "NeedsTwoArguments" in where
+    assert finished == [0]
 
 
 def normal_image_in_one_process(folder):
