@@ -769,6 +769,63 @@ def test_compute_color_returning_a_non_colour_names_class_method_and_pixel(tmp_p
     assert "(1, 1)" in message
 
 
+MUST_RETURN = ("; it must return an RGBColor, such as RGBColor(r, g, b) or BLACK, with "
+               "numbers as channels")
+
+
+@pytest.mark.parametrize("samples", [1, 4])
+def test_compute_color_returning_none_asks_whether_a_return_statement_is_missing(tmp_path,
+                                                                                samples):
+    integrator = ReturnsAtCentre(str(tmp_path / "img"), None)
+    integrator.add_scene(fov90_scene(3, 3))
+    with pytest.raises(TypeError) as error:
+        integrator.render(workers=1, progress=False, samples_per_pixel=samples)
+    assert str(error.value) == ("ReturnsAtCentre.compute_color returned None for pixel "
+                                "(1, 1) (is a return statement missing?)" + MUST_RETURN)
+
+
+def test_compute_color_returning_another_value_says_what_it_must_return(tmp_path):
+    integrator = ReturnsAtCentre(str(tmp_path / "img"), (0.1, 0.2, 0.3))
+    integrator.add_scene(fov90_scene(3, 3))
+    with pytest.raises(TypeError) as error:
+        integrator.render(workers=1, progress=False)
+    assert str(error.value) == ("ReturnsAtCentre.compute_color returned (0.1, 0.2, 0.3) for "
+                                "pixel (1, 1)" + MUST_RETURN)
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
+    "bug: the message is built with repr(RGBColor), which calls float() on every channel "
+    "and so fails on the very channel that is not a number, with float()'s own message"))
+@pytest.mark.parametrize("samples", [1, 4])
+def test_compute_color_returning_a_colour_with_a_non_number_channel_names_the_pixel(
+        tmp_path, samples):
+    normal = Vector3D(0.0, 1.0, 0.0)
+    integrator = ReturnsAtCentre(str(tmp_path / "img"), RGBColor(0.5, normal, 0.5))
+    integrator.add_scene(fov90_scene(3, 3))
+    with pytest.raises(TypeError) as error:
+        integrator.render(workers=1, progress=False, samples_per_pixel=samples)
+    message = str(error.value)
+    assert message.startswith("ReturnsAtCentre.compute_color returned "), message
+    assert "for pixel (1, 1)" in message and message.endswith(MUST_RETURN)
+
+
+class LeavesOutTheLastNumberOfRow2(PixelGrey):
+    """Makes its rows itself, and row 2 lacks the blue channel of its last pixel."""
+
+    def render_row(self, y, samples_per_pixel=1):
+        row = super().render_row(y, samples_per_pixel)
+        return row[:-1] if y == 2 else row
+
+
+def test_rows_that_do_not_form_an_image_stop_the_render_with_a_value_error(tmp_path):
+    integrator = LeavesOutTheLastNumberOfRow2(str(tmp_path / "img"))
+    integrator.add_scene(fov90_scene(3, 8))
+    with pytest.raises(ValueError, match="^render: the colours of the image do not form an "
+                                         "array$"):
+        integrator.render(workers=1, progress=False)
+    assert not (tmp_path / "img_PixelGrey.npy").exists()
+
+
 class MisspelledAttribute(Integrator):
     def compute_color(self, ray):
         hit = self.scene.closest_hit(ray)
