@@ -6,6 +6,7 @@ import math
 import multiprocessing
 import os
 import pickle
+import re
 import signal
 import sys
 import time
@@ -726,6 +727,41 @@ def test_bad_adaptive_option_raises_value_error_naming_it(tmp_path, options, nam
     with pytest.raises(ValueError, match=named):
         integrator.render(progress=False, **options)
     assert not (tmp_path / "out").exists()
+
+
+# ------------------------------------------------------------------------------------------
+# The progress bar
+# ------------------------------------------------------------------------------------------
+def final_bar(err, description):
+    """The last state of the progress bar `description` that a render wrote to stderr."""
+    states = [line for line in err.replace("\r", "\n").splitlines()
+              if line.startswith(description + ":")]
+    assert states, err
+    return states[-1]
+
+
+def test_render_shows_a_progress_bar_of_the_pixels_unless_told_not_to(tmp_path, capfd):
+    integrator = PixelGrey(str(tmp_path / "img"))
+    integrator.add_scene(fov90_scene(40, 30))
+    integrator.render(workers=1)  # with a progress bar by default
+    bar = final_bar(capfd.readouterr().err, "PixelGrey")
+    # 1200 pixels, counted with SI prefixes, and the pixels rendered per second
+    assert re.match(r"PixelGrey: 100%\|.*\| 1\.20k/1\.20k \[.*px/s\]$", bar), bar
+    integrator.render(workers=1, progress=False)
+    assert capfd.readouterr().err == ""
+
+
+def test_adaptive_render_shows_a_bar_for_the_centre_rays_and_one_for_the_refined_pixels(
+        tmp_path, capfd):
+    # 20 centre rays; the edge at X = 2.3 refines columns 1 and 2: 8 pixels
+    integrator = StepAt(str(tmp_path / "img"), 2.3)
+    integrator.add_scene(fov90_scene(5, 4))
+    integrator.render(workers=1, samples_per_pixel=16, adaptive=True)
+    err = capfd.readouterr().err
+    assert re.match(r"StepAt centre rays: 100%\|.*\| 20\.0/20\.0 \[",
+                    final_bar(err, "StepAt centre rays"))
+    assert re.match(r"StepAt 16 rays at edges: 100%\|.*\| 8\.00/8\.00 \[",
+                    final_bar(err, "StepAt 16 rays at edges"))
 
 
 # ------------------------------------------------------------------------------------------
