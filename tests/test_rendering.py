@@ -107,6 +107,42 @@ def test_error_that_cannot_leave_a_worker_is_raised_as_its_text(tmp_path, worker
         integrator.render(workers=2, progress=False)
 
 
+def test_rows_are_cut_into_blocks_that_shrink_towards_the_end():
+    # each block takes a quarter of the rows left per process, at least one row
+    assert PyRT_Rendering._row_blocks(0, 50, 1) == [
+        (0, 12), (12, 21), (21, 28), (28, 33), (33, 37), (37, 40), (40, 42), (42, 44),
+        (44, 45), (45, 46), (46, 47), (47, 48), (48, 49), (49, 50)]
+    assert PyRT_Rendering._row_blocks(1, 20, 2) == [  # 19 // 8, 17 // 8, 15 // 8, ...
+        (1, 3), (3, 5)] + [(y, y + 1) for y in range(5, 20)]
+    assert PyRT_Rendering._row_blocks(5, 5, 2) == []
+
+
+def test_renders_too_short_for_workers_stay_in_one_process_long_ones_use_every_core():
+    assert PyRT_Rendering.worker_count(0.0) == 1
+    assert PyRT_Rendering.worker_count(0.01) == 1
+    assert PyRT_Rendering.worker_count(1000.0) == PyRT_Rendering.usable_cores()
+
+
+@pytest.mark.skipif(not hasattr(os, "sched_setaffinity"), reason="no CPU affinity here")
+def test_usable_cores_are_those_this_process_may_run_on():
+    allowed = os.sched_getaffinity(0)
+    try:
+        os.sched_setaffinity(0, {min(allowed)})
+        assert PyRT_Rendering.usable_cores() == 1
+    finally:
+        os.sched_setaffinity(0, allowed)
+    assert PyRT_Rendering.usable_cores() == len(allowed)
+
+
+@pytest.mark.parametrize("cpu_count, cores", [(4, 4), (None, 1)])
+def test_usable_cores_without_affinity_are_the_cores_of_the_machine(monkeypatch, cpu_count,
+                                                                    cores):
+    # as on Windows and macOS; os.cpu_count() gives None when it cannot tell
+    monkeypatch.delattr(os, "sched_getaffinity", raising=False)
+    monkeypatch.setattr(os, "cpu_count", lambda: cpu_count)
+    assert PyRT_Rendering.usable_cores() == cores
+
+
 # The worker process's function, called here in this process: it renders the blocks it
 # takes into the shared image, then sends one message.
 def run_worker(integrator, blocks, taken_before=0):
