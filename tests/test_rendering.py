@@ -439,6 +439,17 @@ def test_render_row_with_several_samples_gives_the_pixels_of_the_anti_aliased_im
     assert not np.array_equal(image, centre)
 
 
+@pytest.mark.parametrize("option, value, allowed", [
+    ("samples_per_pixel", 0, "a whole number >= 1"),
+    ("workers", 2.5, "None (all cores) or a whole number >= 1")])
+def test_bad_render_option_message_says_what_is_allowed(tmp_path, option, value, allowed):
+    integrator = PhongIntegrator(str(tmp_path / "img"))
+    integrator.add_scene(sphere_test_scene(width=4, height=4))
+    with pytest.raises(ValueError) as error:
+        integrator.render(progress=False, **{option: value})
+    assert str(error.value) == f"render: {option} must be {allowed}, got {value!r}"
+
+
 @pytest.mark.parametrize("option, value", [
     *[("samples_per_pixel", value) for value in (0, -1, 2.5, "4", True)],
     *[("workers", value) for value in (0, -1, 2.5, "2", True)]])
@@ -978,9 +989,10 @@ def test_non_finite_pixels_leave_the_rest_of_the_png_intact_and_are_reported(tmp
             if (x, y) not in ((1, 0), (2, 2)):
                 expected = ((x + 10 * y) / 100 / 0.21) ** (1 / 2.5)
                 assert png[y, x] == pytest.approx([expected] * 3, abs=PNG_TOLERANCE)
-    reports = [line for line in capfd.readouterr().err.splitlines() if "(1, 0)" in line]
-    assert len(reports) == 1
-    assert "2 pixel" in reports[0]
+    assert capfd.readouterr().err.splitlines() == [
+        "PyRT warning: NaNAndInfinity.compute_color returned NaN or infinite values for 2 "
+        "pixel(s), the first at pixel (1, 0); the PNG shows them as the image's darkest (NaN) "
+        "or brightest (infinity) colour"]
 
 
 class InterruptedAtRow3(PixelGrey):
@@ -1040,6 +1052,25 @@ def test_unwritable_output_folder_fails_before_rendering(tmp_path):
     (tmp_path / "afile").write_text("a file, so no folder can be made under it")
     integrator = PixelGrey(str(tmp_path / "afile" / "out" / "img"))
     integrator.add_scene(fov90_scene(3, 3))
-    with pytest.raises(OSError, match="afile"):
+    with pytest.raises(OSError) as error:
+        integrator.render(workers=1, progress=False)
+    assert str(error.value) == (f"render: cannot write the images to "
+                                f"{str(tmp_path.resolve() / 'afile' / 'out')!r} (Not a "
+                                f"directory); choose another output folder")
+    assert integrator.calls == 0
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc"), reason="needs a folder no one can write to")
+def test_existing_folder_where_no_file_can_be_made_fails_before_rendering():
+    # /proc exists, and not even root can create a file there
+    integrator = PixelGrey("/proc/img")
+    integrator.add_scene(fov90_scene(3, 3))
+    with pytest.raises(PermissionError, match="^render: cannot write the images to '/proc' "):
         integrator.render(workers=1, progress=False)
     assert integrator.calls == 0
+
+
+def test_render_makes_the_missing_folders_of_its_file_name(tmp_path):
+    image = render_image(PixelGrey(str(tmp_path / "new" / "folders" / "img")),
+                         fov90_scene(3, 2), workers=1)
+    assert image[1, 2].tolist() == [0.12] * 3
