@@ -439,6 +439,16 @@ def test_render_row_with_several_samples_gives_the_pixels_of_the_anti_aliased_im
     assert not np.array_equal(image, centre)
 
 
+def test_render_row_gives_row_y_flat_from_the_centre_rays_or_from_n_samples(tmp_path):
+    grey = PixelGrey(str(tmp_path / "img"))
+    grey.add_scene(fov90_scene(3, 2))
+    assert grey.render_row(1) == [0.1, 0.1, 0.1, 0.11, 0.11, 0.11, 0.12, 0.12, 0.12]
+    # two samples: one in the left half of each pixel (white), one in the right (black)
+    halves = LeftHalfWhite(str(tmp_path / "img"))
+    halves.add_scene(fov90_scene(3, 2))
+    assert halves.render_row(1, 2) == [0.5] * 9
+
+
 @pytest.mark.parametrize("option, value, allowed", [
     ("samples_per_pixel", 0, "a whole number >= 1"),
     ("workers", 2.5, "None (all cores) or a whole number >= 1")])
