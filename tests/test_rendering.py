@@ -891,6 +891,25 @@ def test_render_of_a_scene_without_camera_says_to_call_set_camera(tmp_path):
                                 "scene.set_camera(Camera(width, height, fov)) first")
 
 
+def test_camera_assigned_without_set_camera_is_rendered_at_its_own_size(tmp_path):
+    scene = fov90_scene(5, 4)
+    scene.camera = Camera(3, 2, 90)  # as scene.camera = ... in a student's script
+    image = render_image(PixelGrey(str(tmp_path / "img")), scene, workers=1)
+    assert image.shape == (2, 3, 3)
+    assert image[1, 2].tolist() == [0.12] * 3
+
+
+def test_rendering_a_scene_again_starts_from_a_black_image(tmp_path):
+    # the partial image of a render stopped at row 3 holds no rows of the render before
+    scene = fov90_scene(3, 6)
+    render_image(Constant(str(tmp_path / "before")), scene, workers=1)
+    integrator = InterruptedAtRow3(str(tmp_path / "img"))
+    integrator.add_scene(scene)
+    with pytest.raises(KeyboardInterrupt):
+        integrator.render(workers=1, progress=False)
+    assert not np.load(tmp_path / "img_PixelGrey_partial.npy")[3:].any()
+
+
 class ReturnsAtCentre(Integrator):
     """Returns `value` for the centre pixel (1, 1) and BLACK elsewhere."""
 
