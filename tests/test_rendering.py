@@ -321,7 +321,10 @@ def test_unguarded_spawn_script_still_renders_and_explains_the_main_guard(tmp_pa
     result = run_spawn_script(tmp_path, UNGUARDED_SPAWN_SCRIPT)
     assert result.returncode == 0, result.stderr
     assert 'if __name__ == "__main__":' in result.stdout + result.stderr
-    assert "a worker process stopped early (exit code 1)" in result.stderr
+    assert ("PyRT: a worker process stopped early (exit code 1); this process renders its "
+            "rows. If this script runs on Windows or macOS (or with the 'spawn' start "
+            "method), put the code that builds and renders the scene under\n"
+            '    if __name__ == "__main__":\n') in result.stderr
     assert not (tmp_path / "worker_rendered").exists()
     image = np.load(tmp_path / "spawned_DistanceAndIndex.npy")
     assert np.array_equal(image, own_integrator_image(tmp_path))
@@ -342,7 +345,10 @@ def test_integrator_holding_a_lambda_renders_in_one_process_and_says_why(tmp_pat
     half = render_image(HalfNormal(str(tmp_path / "half")),
                         sphere_test_scene(width=32, height=32), workers=2)
     err = capfd.readouterr().err
-    assert "one process" in err and "lambda" in err
+    assert err.startswith("PyRT: rendering in one process: the integrator or its scene cannot "
+                          "be sent to worker processes ("), err
+    assert err.endswith("); attributes such as lambdas, open files or generators prevent "
+                        "it\n"), err
     full = render_image(NormalIntegrator(str(tmp_path / "full")),
                         sphere_test_scene(width=32, height=32), workers=1)
     assert full.any()
@@ -359,9 +365,39 @@ def test_with_a_debugger_attached_renders_in_one_process_and_says_why(tmp_path, 
                              sphere_test_scene(width=24, height=24), workers=2)
     finally:
         sys.settrace(None)
-    err = capfd.readouterr().err
-    assert "one process" in err and "debugger" in err
+    assert capfd.readouterr().err.splitlines() == [
+        "PyRT: rendering in one process: a debugger is attached (so that breakpoints in "
+        "compute_color work)"]
     assert np.array_equal(image, normal_image_in_one_process(tmp_path))
+
+
+@pytest.mark.parametrize("debugger", ["debugpy", "pydevd"])
+def test_with_vscode_s_debugger_loaded_renders_in_one_process_and_says_why(tmp_path, capfd,
+                                                                          monkeypatch,
+                                                                          debugger):
+    # VSCode's debugger (debugpy, built on pydevd) may trace through its own means
+    monkeypatch.setitem(sys.modules, debugger, type(sys)(debugger))
+    image = render_image(NormalIntegrator(str(tmp_path / "debugged")),
+                         sphere_test_scene(width=24, height=24), workers=2)
+    assert "a debugger is attached" in capfd.readouterr().err
+    assert np.array_equal(image, normal_image_in_one_process(tmp_path))
+
+
+def test_coverage_measurement_is_no_debugger_workers_still_render(tmp_path, capfd,
+                                                                  worker_first):
+    def tracer(frame, event, arg):  # as coverage.py's Python tracer
+        return None
+
+    tracer.__module__ = "coverage.pytracer"
+    marker = worker_first()
+    sys.settrace(tracer)
+    try:
+        render_image(NormalIntegrator(str(tmp_path / "measured")),
+                     sphere_test_scene(width=24, height=24), workers=2)
+    finally:
+        sys.settrace(None)
+    assert "one process" not in capfd.readouterr().err
+    assert marker.exists(), "no worker process rendered a block"
 
 
 def render_normal_with_two_workers(filename):
@@ -374,8 +410,9 @@ def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_pat
     # whose (daemonic) workers may not start processes of their own.
     with multiprocessing.Pool(1) as pool:
         image = pool.apply(render_normal_with_two_workers, (str(tmp_path / "pooled"),))
-    err = capfd.readouterr().err
-    assert "one process" in err and "daemonic" in err
+    assert capfd.readouterr().err.splitlines() == [
+        "PyRT: rendering in one process: this process is itself a daemonic worker process "
+        "(of a multiprocessing.Pool, say), which may not start processes"]
     assert np.array_equal(image, normal_image_in_one_process(tmp_path))
 
 
@@ -815,9 +852,43 @@ def test_integrator_making_its_own_rows_renders_them_uniformly_and_says_why(tmp_
                          workers=1, samples_per_pixel=4, adaptive=True)
     assert image[1, 3] == pytest.approx([3 / 4, 1 / 2, 0.0])
     captured = capfd.readouterr()
-    assert "LazyIntegrator" in captured.err and "render_row" in captured.err
-    assert "No error estimate" in captured.out
+    assert captured.err == ("PyRT: LazyIntegrator makes its rows itself (it overrides "
+                            "render_row), so adaptive sampling cannot choose its rays: every "
+                            "pixel gets 4\n")
+    assert captured.out == NO_ESTIMATE
     assert not (tmp_path / "img_Lazy_accuracy.json").exists()
+
+
+NO_ESTIMATE = ("No error estimate: LazyIntegrator makes its rows itself (it overrides "
+               "render_row), so PyRT does not see its samples\n")
+
+
+def test_integrator_making_its_own_rows_says_only_that_its_error_is_not_estimated(tmp_path,
+                                                                                  capfd):
+    render_image(LazyIntegrator(str(tmp_path / "img")), fov90_scene(4, 2), workers=1,
+                 samples_per_pixel=2)
+    assert capfd.readouterr() == (NO_ESTIMATE, "")
+    render_image(LazyIntegrator(str(tmp_path / "img")), fov90_scene(4, 2), workers=1)
+    assert capfd.readouterr() == ("", "")  # one sample per pixel: nothing to estimate
+
+
+def test_adaptive_with_one_sample_per_pixel_says_what_adaptive_needs(tmp_path):
+    integrator = PhongIntegrator(str(tmp_path / "img"))
+    integrator.add_scene(sphere_test_scene(width=4, height=4))
+    with pytest.raises(ValueError) as error:
+        integrator.render(progress=False, samples_per_pixel=1, adaptive=True)
+    assert str(error.value) == (
+        "render: adaptive=True needs samples_per_pixel >= 2, the most rays a pixel may get; "
+        "with 1 every pixel gets the ray through its centre")
+
+
+def test_adaptive_render_with_tolerance_one_refines_nothing(tmp_path):
+    # the PNG's colours lie in [0, 1]: no two differ by more than 1
+    integrator = StepAt(str(tmp_path / "img"), 2.3)
+    image = render_image(integrator, fov90_scene(5, 4), workers=1, samples_per_pixel=4,
+                         adaptive=True, tolerance=1)
+    assert len(integrator.points) == 20
+    assert (image[:, :2] == 1.0).all() and (image[:, 2:] == 0.0).all()  # the centre rays
 
 
 @pytest.mark.parametrize("options, named", [
