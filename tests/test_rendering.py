@@ -827,7 +827,9 @@ def test_adaptive_accuracy_file_and_report_hold_the_estimate_worked_out_by_hand(
         "each of the P pairs of neighbouring strata; pixels that kept their centre ray count "
         "as exact")
     samples = tmp_path / "img_Thirds_samples.png"
-    assert capsys.readouterr().out.splitlines() == [
+    captured = capsys.readouterr()
+    assert captured.err == ""
+    assert captured.out.splitlines() == [
         f"Adaptive sampling: 4 of 6 pixels (66.7%) got 9 rays, the others their centre ray: "
         f"6.33 rays per pixel, where uniform sampling takes 9. Map of the rays per pixel: "
         f"{samples} (black: 1, pale yellow: 9)",
