@@ -783,42 +783,45 @@ def test_accuracy_file_holds_the_estimate_worked_out_by_hand(tmp_path, capsys):
         2, False, None)
     assert (accuracy["pixels"], accuracy["rays"], accuracy["rays_per_pixel"]) == (6, 12, 2.0)
     assert accuracy["image_range"] == 0.0
-    printed = [line for line in capsys.readouterr().out.splitlines() if "error" in line]
-    assert len(printed) == 1 and f"{rmse:.2e}" in printed[0], printed
+    assert capsys.readouterr().out.splitlines() == [  # an image of range 0: no share of it
+        f"Estimated error: RMSE {rmse:.2e} of the linear image, from the spread of each "
+        f"pixel's samples; saved in {tmp_path / 'img_LeftHalf_accuracy.json'}"]
 
 
-class WhiteColumn0AndFirstThirdOfColumn1(Integrator):
-    """White in pixel column 0 and in the left third of pixel column 1, black elsewhere."""
+class GreyColumn0AndFirstThirdOfColumn1(Integrator):
+    """Grey 0.5 in pixel column 0 and in the left third of pixel column 1, black elsewhere."""
 
     def __init__(self, filename_):
         super().__init__(filename_ + "_Thirds")
 
     def compute_color(self, ray):
         x, _ = image_point(ray, self.scene.camera)
-        return WHITE if x < 1.0 + 1.0 / 3.0 else BLACK
+        return GREY if x < 1.0 + 1.0 / 3.0 else BLACK
 
 
 def test_adaptive_accuracy_file_and_report_hold_the_estimate_worked_out_by_hand(tmp_path,
                                                                                 capsys):
-    # 3 x 2 pixels. The centre rays are white in column 0, black in columns 1 and 2, so
+    # 3 x 2 pixels. The centre rays are grey in column 0, black in columns 1 and 2, so
     # columns 0 and 1 are refined (4 of 6 pixels) with N = 9, a 3 x 3 grid whose middle
     # cell's sample is the centre ray. In column 1 the samples of the cells of the left
-    # column (0, 3, 6) are white, the others black: mean 1/3; of the pairs (0, 1), (2, 3),
-    # (4, 5), (6, 7) three differ by 1, so the estimated squared error is
-    # 3 / (sqrt(2) * 2 * 4 * 9) in each channel. Column 0 is all white: no error; the
-    # pixels of column 2 kept their centre ray and count as exact.
-    image = render_image(WhiteColumn0AndFirstThirdOfColumn1(str(tmp_path / "img")),
+    # column (0, 3, 6) are grey, the others black: mean 0.5 / 3; of the pairs (0, 1),
+    # (2, 3), (4, 5), (6, 7) three differ by 0.5, so the estimated squared error is
+    # 3 * 0.25 / (sqrt(2) * 2 * 4 * 9) in each channel. Column 0 is all grey: no error;
+    # the pixels of column 2 kept their centre ray and count as exact.
+    image = render_image(GreyColumn0AndFirstThirdOfColumn1(str(tmp_path / "img")),
                          fov90_scene(3, 2), workers=1, samples_per_pixel=9, adaptive=True)
-    assert image[:, 0] == pytest.approx(np.ones((2, 3)), abs=1e-15)
-    assert image[:, 1] == pytest.approx(np.full((2, 3), 1 / 3), abs=1e-15)
+    assert image[:, 0] == pytest.approx(np.full((2, 3), 0.5), abs=1e-15)
+    assert image[:, 1] == pytest.approx(np.full((2, 3), 0.5 / 3), abs=1e-15)
     assert (image[:, 2] == 0.0).all()
-    accuracy = json.loads((tmp_path / "img_Thirds_accuracy.json").read_text())
-    rmse = math.sqrt(2 * 3 / (math.sqrt(2) * 2 * 4 * 9) / 6)
+    text = (tmp_path / "img_Thirds_accuracy.json").read_text()
+    accuracy = json.loads(text)
+    assert text == json.dumps(accuracy, indent=2)  # readable: one entry a line, indented
+    rmse = math.sqrt(2 * 3 * 0.25 / (math.sqrt(2) * 2 * 4 * 9) / 6)
     assert accuracy["estimated_rmse"] == pytest.approx(rmse, rel=1e-12)
     assert accuracy["estimated_rmse_rgb"] == pytest.approx([rmse] * 3, rel=1e-12)
     assert (accuracy["samples_per_pixel"], accuracy["adaptive"], accuracy["tolerance"]) == (
         9, True, 0.03)
-    assert accuracy["image_range"] == 1.0
+    assert accuracy["image_range"] == 0.5
     assert (accuracy["pixels"], accuracy["pixels_with_n_samples"]) == (6, 4)
     assert (accuracy["rays"], accuracy["rays_per_pixel"]) == (4 * 9 + 2, pytest.approx(38 / 6))
     assert accuracy["method"] == (
@@ -833,8 +836,34 @@ def test_adaptive_accuracy_file_and_report_hold_the_estimate_worked_out_by_hand(
         f"Adaptive sampling: 4 of 6 pixels (66.7%) got 9 rays, the others their centre ray: "
         f"6.33 rays per pixel, where uniform sampling takes 9. Map of the rays per pixel: "
         f"{samples} (black: 1, pale yellow: 9)",
-        f"Estimated error: RMSE {rmse:.2e} of the linear image, {rmse:.2%} of its range, from "
-        f"the spread of each pixel's samples; saved in {tmp_path / 'img_Thirds_accuracy.json'}"]
+        f"Estimated error: RMSE {rmse:.2e} of the linear image, {rmse / 0.5:.2%} of its "
+        f"range, from the spread of each pixel's samples; saved in "
+        f"{tmp_path / 'img_Thirds_accuracy.json'}"]
+
+
+class ThirdsWithANaNPixel(GreyColumn0AndFirstThirdOfColumn1):
+    """GreyColumn0AndFirstThirdOfColumn1 with NaN in pixel (2, 1)."""
+
+    def compute_color(self, ray):
+        x, y = image_point(ray, self.scene.camera)
+        if (math.floor(x), math.floor(y)) == (2, 1):
+            return RGBColor(math.nan, math.nan, math.nan)
+        return super().compute_color(ray)
+
+
+def test_estimate_and_image_range_leave_out_the_pixels_that_are_not_numbers(tmp_path, capfd):
+    # As above, but pixel (2, 1) is NaN, which the PNG shows as the darkest colour, as its
+    # neighbours: it keeps its centre ray, and the mean is over the other 5 pixels.
+    image = render_image(ThirdsWithANaNPixel(str(tmp_path / "img")), fov90_scene(3, 2),
+                         workers=1, samples_per_pixel=9, adaptive=True)
+    assert np.isnan(image[1, 2]).all()
+    accuracy = json.loads((tmp_path / "img_Thirds_accuracy.json").read_text())
+    rmse = math.sqrt(2 * 3 * 0.25 / (math.sqrt(2) * 2 * 4 * 9) / 5)
+    assert accuracy["estimated_rmse"] == pytest.approx(rmse, rel=1e-12)
+    assert accuracy["estimated_rmse_rgb"] == pytest.approx([rmse] * 3, rel=1e-12)
+    assert accuracy["image_range"] == 0.5
+    assert accuracy["pixels_with_n_samples"] == 4
+    assert "1 pixel(s), the first at pixel (2, 1)" in capfd.readouterr().err
 
 
 def test_a_render_without_estimate_or_map_removes_those_of_an_earlier_render(tmp_path):
