@@ -866,6 +866,23 @@ def test_estimate_and_image_range_leave_out_the_pixels_that_are_not_numbers(tmp_
     assert "1 pixel(s), the first at pixel (2, 1)" in capfd.readouterr().err
 
 
+class NaNEverywhere(Integrator):
+    def compute_color(self, ray):
+        return RGBColor(math.nan, math.nan, math.nan)
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # the mean of no numbers
+def test_image_without_a_single_number_still_gets_its_accuracy_file(tmp_path, capsys):
+    image = render_image(NaNEverywhere(str(tmp_path / "img")), fov90_scene(3, 2), workers=1,
+                         samples_per_pixel=2)
+    assert np.isnan(image).all()
+    accuracy = json.loads((tmp_path / "img_accuracy.json").read_text())
+    assert accuracy["image_range"] == 0.0  # no numbers, no range
+    assert math.isnan(accuracy["estimated_rmse"])
+    assert capsys.readouterr().out.startswith("Estimated error: RMSE nan of the linear image, "
+                                              "from the spread")
+
+
 def test_a_render_without_estimate_or_map_removes_those_of_an_earlier_render(tmp_path):
     scene = fov90_scene(5, 4)
     render_image(StepAt(str(tmp_path / "img"), 2.3), scene, workers=1, samples_per_pixel=4,
