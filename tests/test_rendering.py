@@ -659,6 +659,71 @@ def test_sample_map_has_the_image_shape_dark_for_one_ray_bright_for_the_most(tmp
         assert rays[:, x] == pytest.approx(np.tile(expected, (4, 1)), abs=PNG_TOLERANCE)
 
 
+def sample_map_colours(samples):
+    """The colours of 1 ray and of N rays in the sample map."""
+    colors = plt.get_cmap(PyRT_Rendering.SAMPLE_MAP_COLORS)
+    return colors(0.0)[:3], colors(1.0)[:3]
+
+
+def test_sample_map_is_pale_yellow_for_n_rays_whatever_the_other_pixels_got(tmp_path):
+    # N = 2: 2 rays are the most too, in the columns 1 and 2 beside the edge
+    render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4), workers=1,
+                 samples_per_pixel=2, adaptive=True)
+    rays = read_png(tmp_path / "img_Step_samples.png")
+    fewest, most = sample_map_colours(2)
+    for x in range(5):
+        expected = most if x in (1, 2) else fewest
+        assert rays[:, x] == pytest.approx(np.tile(expected, (4, 1)), abs=PNG_TOLERANCE), x
+    # every pixel differs from its neighbours: all are refined, all have the most rays
+    render_image(PixelGrey(str(tmp_path / "img")), fov90_scene(5, 4), workers=1,
+                 samples_per_pixel=4, adaptive=True, tolerance=0.0)
+    rays = read_png(tmp_path / "img_PixelGrey_samples.png")
+    assert rays == pytest.approx(np.tile(most, (4, 5, 1)), abs=PNG_TOLERANCE)
+
+
+def test_sample_map_is_a_png_whatever_matplotlib_saves_by_default(tmp_path):
+    with plt.rc_context({"savefig.format": "svg"}):
+        render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4), workers=1,
+                     samples_per_pixel=4, adaptive=True)
+    assert (tmp_path / "img_Step_samples.png").read_bytes().startswith(b"\x89PNG\r\n")
+
+
+def test_adaptive_render_of_an_image_without_edges_shows_no_bar_for_refining(tmp_path,
+                                                                            capfd):
+    integrator = Constant(str(tmp_path / "img"))
+    integrator.add_scene(fov90_scene(7, 5))
+    integrator.render(workers=1, samples_per_pixel=16, adaptive=True)
+    err = capfd.readouterr().err
+    assert "Constant centre rays: 100%" in err
+    assert "rays at edges" not in err
+
+
+def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch):
+    # README: short renders stay in one process, where starting workers would cost more
+    def no_workers(*args):
+        raise AssertionError("a short render started worker processes")
+
+    monkeypatch.setattr(PyRT_Rendering, "_render_with_workers", no_workers)
+    image = render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4),
+                         samples_per_pixel=4, adaptive=True)  # workers=None: all cores
+    assert (image[:, 0] == 1.0).all() and (image[:, 3:] == 0.0).all()
+
+
+def test_adaptive_render_with_two_workers_renders_both_passes_with_them(tmp_path,
+                                                                      monkeypatch):
+    passes = []
+    with_workers = PyRT_Rendering._render_with_workers
+
+    def recorded(camera, blocks, rows, *args):
+        passes.append(type(rows).__name__)
+        yield from with_workers(camera, blocks, rows, *args)
+
+    monkeypatch.setattr(PyRT_Rendering, "_render_with_workers", recorded)
+    render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 8), workers=2,
+                 samples_per_pixel=4, adaptive=True)
+    assert passes == ["_CourseRows", "_SampledRows"]
+
+
 def test_adaptive_render_with_zero_tolerance_refines_every_pixel_as_uniform_sampling_does(
         tmp_path, capsys):
     # Every pixel differs from a neighbour: each gets the uniform render's 4 rays, but for
