@@ -487,6 +487,30 @@ def test_render_row_gives_row_y_flat_from_the_centre_rays_or_from_n_samples(tmp_
     assert halves.render_row(1, 2) == [0.5] * 9
 
 
+def test_sampled_pixels_gives_colour_and_error_of_the_pixels_asked_for_zeros_elsewhere(
+        tmp_path):
+    # LeftHalfWhite with N = 2: mean 1/2 and one pair differing by 1, error 1 / (4 sqrt(2))
+    integrator = LeftHalfWhite(str(tmp_path / "img"))
+    integrator.add_scene(fov90_scene(3, 2))
+    row = PyRT_Rendering.sampled_pixels(integrator, 1, 2, [1])
+    error = 1 / (4 * math.sqrt(2))
+    assert row[:6] == [0.0] * 6 and row[12:] == [0.0] * 6
+    assert row[6:12] == pytest.approx([0.5] * 3 + [error] * 3, rel=1e-15)
+    # one sample per pixel: no pair of samples, no spread to estimate an error from
+    grey = PixelGrey(str(tmp_path / "img"))
+    grey.add_scene(fov90_scene(3, 2))
+    row = PyRT_Rendering.sampled_pixels(grey, 1, 1, [0, 1, 2])
+    assert row[3:6] == row[9:12] == row[15:18] == [0.0] * 3
+
+
+def test_anti_aliased_camera_rays_see_objects_right_in_front_of_the_camera(tmp_path):
+    # a sphere 0.2 to 0.6 in front of the camera fills the view of the centre pixel
+    scene = fov90_scene(3, 3, [(Sphere(Vector3D(0, 0, -0.4), 0.2), GREY)])
+    image = render_image(IntersectionIntegrator(str(tmp_path / "img")), scene, workers=1,
+                         samples_per_pixel=4)
+    assert image[1, 1].tolist() == [1.0, 0.0, 0.0]
+
+
 @pytest.mark.parametrize("option, value, allowed", [
     ("samples_per_pixel", 0, "a whole number >= 1"),
     ("workers", 2.5, "None (all cores) or a whole number >= 1")])
@@ -1133,11 +1157,12 @@ def test_compute_color_returning_none_asks_whether_a_return_statement_is_missing
                                 "(1, 1) (is a return statement missing?)" + MUST_RETURN)
 
 
-def test_compute_color_returning_another_value_says_what_it_must_return(tmp_path):
+@pytest.mark.parametrize("samples", [1, 4])
+def test_compute_color_returning_another_value_says_what_it_must_return(tmp_path, samples):
     integrator = ReturnsAtCentre(str(tmp_path / "img"), (0.1, 0.2, 0.3))
     integrator.add_scene(fov90_scene(3, 3))
     with pytest.raises(TypeError) as error:
-        integrator.render(workers=1, progress=False)
+        integrator.render(workers=1, progress=False, samples_per_pixel=samples)
     assert str(error.value) == ("ReturnsAtCentre.compute_color returned (0.1, 0.2, 0.3) for "
                                 "pixel (1, 1)" + MUST_RETURN)
 
