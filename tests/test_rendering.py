@@ -683,6 +683,20 @@ def test_sample_map_has_the_image_shape_dark_for_one_ray_bright_for_the_most(tmp
         assert rays[:, x] == pytest.approx(np.tile(expected, (4, 1)), abs=PNG_TOLERANCE)
 
 
+def test_refined_pixels_are_both_of_every_pair_of_neighbours_differing_by_more_than_t():
+    # a 4 x 5 display, 0.25 everywhere but pixel (2, 1), whose blue channel is 0.5
+    display = np.full((4, 5, 3), 0.25)
+    display[1, 2, 2] = 0.5
+    refined = PyRT_Rendering.refined_pixels(display, 0.125)
+    expected = np.zeros((4, 5), dtype=bool)
+    expected[1, 1:4] = expected[0:3, 2] = True  # (2, 1) and its four neighbours
+    assert refined.dtype == bool and (refined == expected).all()
+    # a difference of exactly the tolerance is not more than it
+    assert not PyRT_Rendering.refined_pixels(display, 0.25).any()
+    # tolerance 0: any difference, and no pair of equal neighbours
+    assert (PyRT_Rendering.refined_pixels(display, 0.0) == expected).all()
+
+
 def sample_map_colours(samples):
     """The colours of 1 ray and of N rays in the sample map."""
     colors = plt.get_cmap(PyRT_Rendering.SAMPLE_MAP_COLORS)
