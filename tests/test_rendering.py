@@ -697,6 +697,35 @@ def test_refined_pixels_are_both_of_every_pair_of_neighbours_differing_by_more_t
     assert (PyRT_Rendering.refined_pixels(display, 0.0) == expected).all()
 
 
+class LinearStepAt(Integrator):
+    """Grey `left` left of the line X = 2.3 of the image plane, `right` right of it; its PNG
+    shows the linear colours without tonemapping, as LazyIntegrator's does."""
+
+    tonemap = False
+
+    def __init__(self, filename_, left, right):
+        super().__init__(filename_ + "_Linear")
+        self.left, self.right = left, right
+
+    def compute_color(self, ray):
+        x, _ = image_point(ray, self.scene.camera)
+        grey = self.left if x < 2.3 else self.right
+        return RGBColor(grey, grey, grey)
+
+
+@pytest.mark.parametrize("left, right, refined", [
+    (0.2, 0.3, 8),      # 0.1 apart in the PNG: columns 1 and 2 refined
+    (0.2, 0.21, 0),     # 0.01 apart: less than the tolerance
+    (1.5, 3.0, 0),      # both shown as 1
+    (-0.5, -1.0, 0)])   # both shown as 0
+def test_adaptive_render_without_tonemapping_compares_the_colours_the_png_shows(
+        tmp_path, left, right, refined):
+    render_image(LinearStepAt(str(tmp_path / "img"), left, right), fov90_scene(5, 4),
+                 workers=1, samples_per_pixel=4, adaptive=True, tolerance=0.03)
+    accuracy = json.loads((tmp_path / "img_Linear_accuracy.json").read_text())
+    assert accuracy["pixels_with_n_samples"] == refined
+
+
 def sample_map_colours(samples):
     """The colours of 1 ray and of N rays in the sample map."""
     colors = plt.get_cmap(PyRT_Rendering.SAMPLE_MAP_COLORS)
