@@ -776,8 +776,11 @@ def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch
     assert (image[:, 0] == 1.0).all() and (image[:, 3:] == 0.0).all()
 
 
-def test_adaptive_render_with_two_workers_renders_both_passes_with_them(tmp_path,
-                                                                      monkeypatch):
+@pytest.mark.parametrize("adaptive, passes_made", [
+    (False, ["_SampledRows"]), (True, ["_CourseRows", "_SampledRows"])])
+def test_render_with_two_workers_renders_every_pass_with_them(tmp_path, monkeypatch, adaptive,
+                                                              passes_made):
+    # however short the render: workers=2 is an order
     passes = []
     with_workers = PyRT_Rendering._render_with_workers
 
@@ -787,8 +790,8 @@ def test_adaptive_render_with_two_workers_renders_both_passes_with_them(tmp_path
 
     monkeypatch.setattr(PyRT_Rendering, "_render_with_workers", recorded)
     render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 8), workers=2,
-                 samples_per_pixel=4, adaptive=True)
-    assert passes == ["_CourseRows", "_SampledRows"]
+                 samples_per_pixel=4, adaptive=adaptive)
+    assert passes == passes_made
 
 
 def test_adaptive_render_with_zero_tolerance_refines_every_pixel_as_uniform_sampling_does(
