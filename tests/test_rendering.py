@@ -355,6 +355,15 @@ def test_integrator_holding_a_lambda_renders_in_one_process_and_says_why(tmp_pat
     assert np.array_equal(half, full * 0.5)
 
 
+@pytest.mark.parametrize("height, workers_wanted", [(1, False), (2, True)])
+def test_workers_are_wanted_for_two_blocks_of_rows_not_for_one(tmp_path, capfd, height,
+                                                               workers_wanted):
+    # workers=2 cuts 1 row into 1 block and 2 rows into 2: only then does PyRT try to
+    # send the integrator to a worker (and says why it cannot: the lambda)
+    render_image(HalfNormal(str(tmp_path / "half")), fov90_scene(3, height), workers=2)
+    assert ("rendering in one process" in capfd.readouterr().err) == workers_wanted
+
+
 def test_with_a_debugger_attached_renders_in_one_process_and_says_why(tmp_path, capfd):
     def tracer(frame, event, arg):  # what pdb and VSCode's debugger install
         return None
