@@ -653,6 +653,23 @@ def test_adaptive_render_refines_both_pixels_across_an_edge_one_sample_per_strat
     assert (image[:, [0]] == 1.0).all() and (image[:, [3, 4]] == 0.0).all()
 
 
+def test_refined_pixels_get_the_rays_of_uniform_sampling_but_in_the_centre_cell(tmp_path):
+    # README: the jittered rays of the uniform N-sample render, but for the cell that holds
+    # the pixel's centre, whose ray is the centre ray
+    uniform = StepAt(str(tmp_path / "uniform"), 2.3)
+    render_image(uniform, fov90_scene(5, 4), workers=1, samples_per_pixel=4)
+    adaptive = StepAt(str(tmp_path / "adaptive"), 2.3)
+    render_image(adaptive, fov90_scene(5, 4), workers=1, samples_per_pixel=4, adaptive=True)
+    jittered, refined = samples_per_pixel(uniform.points), samples_per_pixel(adaptive.points)
+    middle = PyRT_Rendering.centre_cell(4)
+    for x in (1, 2):  # the refined columns
+        for y in range(4):
+            centre, *others = refined[(x, y)]  # the centre ray was traced first
+            assert centre == pytest.approx((0.5, 0.5), abs=1e-9)
+            expected = jittered[(x, y)][:middle] + jittered[(x, y)][middle + 1:]
+            assert np.array(others) == pytest.approx(np.array(expected), abs=1e-9), (x, y)
+
+
 class Constant(Integrator):
     """The same grey for every ray; counts its rays."""
 
