@@ -512,11 +512,18 @@ def test_sampled_pixels_gives_colour_and_error_of_the_pixels_asked_for_zeros_els
     assert row[3:6] == row[9:12] == row[15:18] == [0.0] * 3
 
 
-def test_anti_aliased_camera_rays_see_objects_right_in_front_of_the_camera(tmp_path):
-    # a sphere 0.2 to 0.6 in front of the camera fills the view of the centre pixel
+@pytest.mark.parametrize("samples", [1, 4])
+def test_camera_rays_see_objects_however_close_to_the_camera(tmp_path, samples):
+    # camera rays start at no surface, so t_min = 0: a wall 0.00005 in front of the camera
+    # (less than EPSILON, the t_min of other rays) fills the image; a sphere 0.2 to 0.6 in
+    # front of it fills the view of the centre pixel
+    wall = InfinitePlane(Vector3D(0, 0, -0.00005), Vector3D(0, 0, 1))
+    image = render_image(IntersectionIntegrator(str(tmp_path / "wall")), fov90_scene(3, 3, [
+        (wall, GREY)]), workers=1, samples_per_pixel=samples)
+    assert (image == (1.0, 0.0, 0.0)).all()
     scene = fov90_scene(3, 3, [(Sphere(Vector3D(0, 0, -0.4), 0.2), GREY)])
-    image = render_image(IntersectionIntegrator(str(tmp_path / "img")), scene, workers=1,
-                         samples_per_pixel=4)
+    image = render_image(IntersectionIntegrator(str(tmp_path / "ball")), scene, workers=1,
+                         samples_per_pixel=samples)
     assert image[1, 1].tolist() == [1.0, 0.0, 0.0]
 
 
