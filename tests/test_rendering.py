@@ -1133,14 +1133,16 @@ def final_bar(err, description):
     return states[-1]
 
 
-def test_render_shows_a_progress_bar_of_the_pixels_unless_told_not_to(tmp_path, capfd):
+@pytest.mark.parametrize("workers, samples", [(1, 1), (None, 2)])
+def test_render_shows_a_progress_bar_of_the_pixels_unless_told_not_to(tmp_path, capfd,
+                                                                      workers, samples):
     integrator = PixelGrey(str(tmp_path / "img"))
     integrator.add_scene(fov90_scene(40, 30))
-    integrator.render(workers=1)  # with a progress bar by default
+    integrator.render(workers=workers, samples_per_pixel=samples)  # a progress bar by default
     bar = final_bar(capfd.readouterr().err, "PixelGrey")
     # 1200 pixels, counted with SI prefixes, and the pixels rendered per second
     assert re.match(r"PixelGrey: 100%\|.*\| 1\.20k/1\.20k \[.*px/s\]$", bar), bar
-    integrator.render(workers=1, progress=False)
+    integrator.render(workers=workers, samples_per_pixel=samples, progress=False)
     assert capfd.readouterr().err == ""
 
 
