@@ -80,6 +80,25 @@ def test_one_and_two_workers_give_identical_images(tmp_path, capfd, worker_first
     assert np.array_equal(one, two)
 
 
+CHILDREN_SEEN = []  # by CountsWorkers in this process
+
+
+class CountsWorkers(PixelGrey):
+    """PixelGrey that notes, in this process, how many worker processes are running."""
+
+    def compute_color(self, ray):
+        if multiprocessing.parent_process() is None:
+            CHILDREN_SEEN.append(len(multiprocessing.active_children()))
+        return super().compute_color(ray)
+
+
+def test_two_workers_are_this_process_and_one_worker_process(tmp_path, worker_first):
+    CHILDREN_SEEN.clear()
+    worker_first()
+    render_image(CountsWorkers(str(tmp_path / "img")), fov90_scene(4, 32), workers=2)
+    assert CHILDREN_SEEN and max(CHILDREN_SEEN) == 1
+
+
 def test_error_in_a_worker_process_is_raised_with_the_worker_traceback(tmp_path, worker_first):
     worker_first(raise_in_worker=(ZeroDivisionError, ["raised in a worker"]))
     integrator = PhongIntegrator(str(tmp_path / "bad"))
