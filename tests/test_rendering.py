@@ -505,10 +505,22 @@ def test_render_row_with_several_samples_gives_the_pixels_of_the_anti_aliased_im
     assert not np.array_equal(image, centre)
 
 
+class WhiteAtPixelCentres(Integrator):
+    """White for a ray through the centre of its pixel, black for any other ray."""
+
+    def compute_color(self, ray):
+        x, y = image_point(ray, self.scene.camera)
+        centre = abs(x % 1.0 - 0.5) < 1e-9 and abs(y % 1.0 - 0.5) < 1e-9
+        return WHITE if centre else BLACK
+
+
 def test_render_row_gives_row_y_flat_from_the_centre_rays_or_from_n_samples(tmp_path):
     grey = PixelGrey(str(tmp_path / "img"))
     grey.add_scene(fov90_scene(3, 2))
     assert grey.render_row(1) == [0.1, 0.1, 0.1, 0.11, 0.11, 0.11, 0.12, 0.12, 0.12]
+    centres = WhiteAtPixelCentres(str(tmp_path / "img"))
+    centres.add_scene(fov90_scene(3, 2))
+    assert centres.render_row(1) == [1.0] * 9  # the rays through the centres, by default
     # two samples: one in the left half of each pixel (white), one in the right (black)
     halves = LeftHalfWhite(str(tmp_path / "img"))
     halves.add_scene(fov90_scene(3, 2))
