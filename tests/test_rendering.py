@@ -80,6 +80,33 @@ def test_one_and_two_workers_give_identical_images(tmp_path, capfd, worker_first
     assert np.array_equal(one, two)
 
 
+class WorkerDiesInItsFirstBlock(PixelGrey):
+    """PixelGrey whose worker process dies (exit code 3) at its first pixel; this process
+    renders nothing before that."""
+
+    def __init__(self, filename_, marker):
+        super().__init__(filename_)
+        self.marker = str(marker)
+
+    def compute_color(self, ray):
+        if multiprocessing.parent_process() is not None:  # a worker process
+            open(self.marker, "w").close()
+            os._exit(3)
+        wait_for_file(self.marker)
+        return super().compute_color(ray)
+
+
+def test_worker_that_dies_holding_a_block_leaves_it_to_this_process(tmp_path, capfd):
+    image = render_image(WorkerDiesInItsFirstBlock(str(tmp_path / "img"),
+                                                   tmp_path / "worker_started"),
+                         fov90_scene(3, 8), workers=2)
+    assert (tmp_path / "worker_started").exists()
+    assert "a worker process stopped early (exit code 3)" in capfd.readouterr().err
+    for y in range(8):
+        for x in range(3):
+            assert tuple(image[y, x]) == ((x + 10 * y) / 100,) * 3, (x, y)
+
+
 CHILDREN_SEEN = []  # by CountsWorkers in this process
 
 
