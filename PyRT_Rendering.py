@@ -445,7 +445,6 @@ class AdaptiveSampling(UniformSampling):
         image = integrator.scene.rendered_image
         self.centre = np.zeros(image.shape)
         self.variance = np.zeros(image.shape)
-        self.refined = np.zeros(image.shape[:2], dtype=bool)
         start = time.perf_counter()
         yield RenderPass(_CourseRows(1), workers, self._keep_centre, " centre rays")
         seconds = time.perf_counter() - start

@@ -71,6 +71,13 @@ def test_depth_integrator_max_depth_defaults_to_10():
     assert DepthIntegrator("img", 5, "_far").get_filename() == "img_Depth_far"
 
 
+@pytest.mark.parametrize("max_depth", ["10", None, True, Vector3D(0.0, 0.0, 10.0)],
+                         ids=["str", "None", "bool", "Vector3D"])
+def test_depth_integrator_max_depth_must_be_a_number(max_depth):
+    with pytest.raises(ValueError, match="max_depth_ must be a positive finite distance"):
+        DepthIntegrator("unused", max_depth)
+
+
 def test_own_integrator_file_name_is_filename_plus_experiment_name():
     class Plain(Integrator):
         def compute_color(self, ray):
@@ -268,6 +275,45 @@ def test_phong_miss_is_black_not_ambient(tmp_path):
     image = render_image(PhongIntegrator(str(tmp_path / "img")), scene)
     image[1, 1] = 0  # the only pixel that sees the sphere
     assert not image.any()
+
+
+class RecordingLambertian(Lambertian):
+    """Lambertian that records the directions and normal each call gets."""
+
+    def __init__(self, diffuse_colour):
+        super().__init__(diffuse_colour)
+        self.calls = []
+
+    def get_value(self, wi, wo, normal):
+        self.calls.append((wi, wo, normal))
+        return super().get_value(wi, wo, normal)
+
+
+def test_phong_gives_the_brdf_the_light_direction_the_way_back_along_the_ray_and_normal():
+    # the centre ray of a 3 x 3 camera, (0, 0, -1), meets the sphere at (0, 0, -4), normal
+    # (0, 0, 1); the light at (0, 3, 0) lies along (0, 3, 4) from there
+    sphere = Sphere(Vector3D(0, 0, -5), 1)
+    scene = fov90_scene(3, 3, [(sphere, GREY)], [(Vector3D(0, 3, 0), WHITE)])
+    brdf = RecordingLambertian(GREY)
+    sphere.set_BRDF(brdf)
+    integrator = PhongIntegrator("unused")
+    integrator.add_scene(scene)
+    integrator.compute_color(Ray(Vector3D(0, 0, 0), Vector3D(0, 0, -1)))
+    [(wi, wo, normal)] = brdf.calls
+    assert (wi.x, wi.y, wi.z) == pytest.approx((0.0, 0.6, 0.8), abs=1e-15)
+    assert (wo.x, wo.y, wo.z) == (0.0, 0.0, 1.0)
+    assert (normal.x, normal.y, normal.z) == (0.0, 0.0, 1.0)
+
+
+def test_phong_hitting_an_object_without_brdf_names_it_and_says_how_to_give_it_one(tmp_path):
+    scene = fov90_scene(3, 3, [(Sphere(Vector3D(5, 0, -5), 1), GREY)])
+    scene.add_object(Sphere(Vector3D(0, 0, -5), 1))  # object 1, without set_BRDF
+    integrator = PhongIntegrator(str(tmp_path / "img"))
+    integrator.add_scene(scene)
+    with pytest.raises(ValueError) as error:
+        integrator.render(workers=1, progress=False)
+    assert str(error.value) == ("PhongIntegrator: object 1 of the scene has no BRDF; call "
+                                "obj.set_BRDF(Lambertian(RGBColor(...))) on it")
 
 
 # A light far away, low over a tilted surface. The centre ray of a 3 x 3 camera meets the
