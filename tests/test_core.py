@@ -12,7 +12,8 @@ from hypothesis import strategies as st
 
 import PyRT_Core
 from helpers import PNG_TOLERANCE, read_png
-from PyRT_Common import BLACK, Cross, Length, Normalize, RGBColor, Ray, Vector3D
+from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, Cross, HitData, Length, Normalize, RGBColor,
+                         Ray, Vector3D)
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight,
                        Primitive, Scene, Sphere)
 
@@ -272,6 +273,43 @@ def test_plane_miss(origin, direction):
 
 def test_plane_respects_t_max():
     assert floor_plane().intersect(ray((0, 0, 0), (0, -1, 0), t_max=0.5)).has_hit is False
+
+
+def test_plane_hit_at_exactly_t_max_counts():
+    hit = floor_plane().intersect(ray((0, 0, 0), (0, -1, 0), t_max=1.0))
+    assert_hit(hit, (0.0, -1.0, 0.0), (0.0, 1.0, 0.0), 1.0)
+
+
+def test_plane_hit_from_a_point_off_every_axis():
+    # The plane through (0, 0, -4) with normal n = (2, -1, 2)/3, from o = (1, 1, 1) down -z:
+    # t = (p - o).n / d.n = ((-1, -1, -5).(2, -1, 2)/3) / (-2/3) = (-11/3) / (-2/3) = 5.5
+    plane = InfinitePlane(Vector3D(0.0, 0.0, -4.0), Vector3D(2.0, -1.0, 2.0))
+    assert_hit(plane.intersect(ray((1, 1, 1), (0, 0, -1))),
+               (1.0, 1.0, -4.5), (2 / 3, -1 / 3, 2 / 3), 5.5)
+
+
+# Squared lengths at the two ends of the range that is taken as unit length, 1 -+ 1e-12:
+# 0.5^2 + 0.8660254037838613^2 and 1.0000000000005^2 round to exactly 1 - 1e-12 and 1 + 1e-12.
+EDGES_OF_UNIT_LENGTH = [(0.0, 0.5, -0.8660254037838613), (0.0, 0.0, -1.0000000000005)]
+
+
+@pytest.mark.parametrize("direction", EDGES_OF_UNIT_LENGTH, ids=["shortest", "longest"])
+def test_a_direction_at_either_end_of_the_unit_tolerance_is_taken_as_it_is(direction):
+    # The plane z = -1 lies (-1 - 0) / d.z = 1 / |d.z| along d itself; normalising d first
+    # would move the hit by about 5e-13.
+    assert direction[0] ** 2 + direction[1] ** 2 + direction[2] ** 2 in (1 - 1e-12, 1 + 1e-12)
+    plane = InfinitePlane(Vector3D(0.0, 0.0, -1.0), Vector3D(0.0, 0.0, 1.0))
+    scene = Scene()
+    scene.add_object(plane)
+    along_d = 1.0 / -direction[2]
+    normalised = along_d * math.hypot(*direction)
+    for hit in (plane.intersect(ray((0, 0, 0), direction)),
+                scene.closest_hit(ray((0, 0, 0), direction))):
+        assert hit.hit_distance == pytest.approx(along_d, rel=1e-15)
+    # any_hit agrees: the hit lies beyond a t_max halfway between the two distances when
+    # d is shorter than unit length, before it when d is longer
+    halfway = (along_d + normalised) / 2
+    assert scene.any_hit(ray((0, 0, 0), direction, t_max=halfway)) is (along_d < halfway)
 
 
 # ------------------------------------------------------------------------------------------
@@ -551,6 +589,77 @@ def test_any_hit_false_on_a_miss_or_beyond_t_max(direction, t_max):
     assert overlapping(("far", "near")).any_hit(ray((0, 0, 0), direction, t_max=t_max)) is False
 
 
+def test_any_hit_measures_t_max_as_a_distance_along_a_direction_not_of_unit_length():
+    # (1, 1, -1) reaches the plane z = -2 after a distance of 2 sqrt(3) = 3.46
+    scene = Scene()
+    scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, -2.0), Vector3D(0.0, 0.0, 1.0)))
+    assert scene.closest_hit(ray((0, 0, 0), (1, 1, -1))).hit_distance == pytest.approx(
+        2 * math.sqrt(3), rel=1e-15)
+    assert scene.any_hit(ray((0, 0, 0), (1, 1, -1), t_max=3.4)) is False
+    assert scene.any_hit(ray((0, 0, 0), (1, 1, -1), t_max=3.5)) is True
+
+
+def test_an_object_added_after_a_query_is_seen_by_the_next_one():
+    scene = overlapping(("far",))
+    assert scene.closest_hit(ray((0, 0, 0), (0, 0, -1))).hit_distance == pytest.approx(9.0)
+    scene.add_object(Sphere(Vector3D(0.0, 0.0, -5.0), 1.0))
+    hit = scene.closest_hit(ray((0, 0, 0), (0, 0, -1)))
+    assert (hit.primitive_index, hit.hit_distance) == (1, pytest.approx(4.0))
+    assert scene.any_hit(ray((0, 0, 0), (0, 0, -1), t_max=5.0)) is True
+
+
+def test_a_sphere_moved_again_and_again_is_hit_where_it_is_now():
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 1.0)
+    scene = Scene()
+    scene.add_object(sphere)
+    for x in (5.0, -5.0, 5.0):
+        sphere.origin = Vector3D(x, 0.0, -5.0)
+        # straight at the centre, sqrt(50) away: the surface is one radius nearer
+        towards = ray((0, 0, 0), (x, 0.0, -5.0))
+        assert scene.closest_hit(towards).hit_distance == pytest.approx(math.sqrt(50) - 1)
+        assert scene.any_hit(towards) is True
+
+
+def test_a_shape_attribute_lives_in_the_underscore_slot_and_rederives_its_owner():
+    # What Sphere.radius, Camera.width and the like are made of: the constructor fills
+    # _radius, reading radius gives it back, assigning it works the constants out again.
+    class Disc:
+        radius = PyRT_Core._Shape()
+
+        def __init__(self, radius):
+            self._radius = radius
+            self._derive()
+
+        def _derive(self):
+            self.area = math.pi * self._radius ** 2
+
+    disc = Disc(1.0)
+    assert (disc.radius, disc.area) == (1.0, math.pi)
+    disc.radius = 2.0
+    assert (disc.radius, disc._radius, disc.area) == (2.0, 2.0, 4 * math.pi)
+    assert isinstance(Disc.radius, PyRT_Core._Shape)
+
+
+def test_set_environment_map_loads_the_map_of_the_scene(tmp_path):
+    # a 2 x 1 map: left half RGB (1, 2, 4), right half (8, 16, 0.5); straight ahead (u = 0.5)
+    # reads the texel under floor(0.5 * (2 - 1)) = 0, the left one
+    path = tmp_path / "sky.hdr"
+    image_rgb = np.array([[[1.0, 2.0, 4.0], [8.0, 16.0, 0.5]]], np.float32)
+    assert cv2.imwrite(str(path), image_rgb[:, :, ::-1])
+    scene = Scene()
+    scene.set_environment_map(str(path))
+    assert isinstance(scene.env_map, PyRT_Core.EnvironmentMap)
+    assert scene.env_map.image.shape == (1, 2, 3)
+    assert rgb(scene.env_map.getValue(Vector3D(0.0, 0.0, -1.0))) == (1.0, 2.0, 4.0)
+    assert rgb(scene.env_map.getValue(Vector3D(0.0, 0.0, 1.0))) == (8.0, 16.0, 0.5)
+
+
+def test_set_pixel_before_set_camera_says_to_set_the_camera_first():
+    with pytest.raises(RuntimeError, match=r"^Scene\.set_pixel: the scene has no image yet; "
+                                           r"call scene\.set_camera\(camera\) first$"):
+        Scene().set_pixel(RGBColor(1.0, 1.0, 1.0), 0, 0)
+
+
 def test_set_pixel_writes_row_y_column_x():
     scene = Scene()
     scene.set_camera(Camera(3, 2, 60))
@@ -732,6 +841,156 @@ def test_rays_that_leave_objects_out_see_what_testing_all_would(copies, rays):
                 continue  # a light right on the hit point gives no direction to trace
             assert own.any_hit(student_shadow_ray(hits[0], mine)) == plain.any_hit(
                 student_shadow_ray(hits[1], theirs))
+
+
+def cube_around_a_tile():
+    """A floor tile y = 0 (x, z in [-0.25, 0.25]) in a closed cube of six 2 x 2 walls at
+    x, y, z = -1 and 1, with lights on each axis: at +-2, outside the cube, and at +-0.5,
+    inside it. The hit returned is the tile's at the origin, seen from above."""
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(-0.25, 0.0, 0.25), Vector3D(0.5, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -0.5)))
+    for axis in range(3):
+        for side in (-1.0, 1.0):
+            corner, s1, s2 = [-1.0] * 3, [0.0] * 3, [0.0] * 3
+            corner[axis] = side
+            s1[(axis + 1) % 3] = s2[(axis + 2) % 3] = 2.0
+            scene.add_object(Parallelogram(Vector3D(*corner), Vector3D(*s1), Vector3D(*s2)))
+    for axis in range(3):
+        for position in (2.0, -2.0, 0.5, -0.5):
+            xyz = [0.0] * 3
+            xyz[axis] = position
+            scene.add_point_light_sources(PointLight(Vector3D(*xyz), WHITE_LIGHT))
+    return scene
+
+
+def tile_hit(scene):
+    hit = scene.closest_hit(ray((0.0, 0.5, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (0.0, 0.0, 0.0))
+    return hit
+
+
+def hits_anything(scene, r):
+    """any_hit as testing every object gives it."""
+    return any(obj.intersect(r).has_hit for obj in scene.object_list)
+
+
+def to_point(hit, target, **limits):
+    """The ray from the hit point to target, stopping there, as students write them."""
+    r = student_shadow_ray(hit, PointLight(Vector3D(*target), WHITE_LIGHT))
+    for name, value in limits.items():
+        setattr(r, name, value)
+    return r
+
+
+def test_shadow_rays_from_a_hit_point_to_every_light_find_the_walls_in_between():
+    # The lights outside the cube are hidden by a wall, those inside it are not (the one
+    # below the tile is not hidden by the tile: the ray leaves it).
+    scene = cube_around_a_tile()
+    hit = tile_hit(scene)
+    expected = [True, True, False, False] * 3
+    for _ in range(2):  # twice, the second time with the lights in reverse order
+        rays = [student_shadow_ray(hit, light) for light in scene.pointLights]
+        assert [scene.any_hit(r) for r in rays] == [hits_anything(scene, r) for r in rays]
+        assert [scene.any_hit(r) for r in rays] == expected
+        scene.pointLights.reverse()
+        expected.reverse()
+        hit = tile_hit(scene)
+
+
+@pytest.mark.parametrize("target, expected", [
+    ((0.0, 3.0, 0.0), True), ((0.0, -3.0, 0.0), True), ((0.3, 0.3, 0.3), False),
+    ((0.0, 1.0 - 1e-6, 0.0), False), ((2.5, 0.0, 0.0), True),
+])
+def test_rays_from_a_hit_point_to_points_that_are_no_lights_see_what_is_there(target, expected):
+    scene = cube_around_a_tile()
+    r = to_point(tile_hit(scene), target)
+    assert scene.any_hit(r) is hits_anything(scene, r) is expected
+
+
+@pytest.mark.parametrize("axis", range(3))
+def test_rays_from_a_hit_point_moved_in_place_see_what_is_there_now(axis):
+    # Moved out of the cube, 3 along an axis, the point sees the light inside the cube on
+    # that axis through the wall.
+    scene = cube_around_a_tile()
+    hit = tile_hit(scene)
+    light = [0.0] * 3
+    light[axis] = 0.5
+    setattr(hit.hit_point, "xyz"[axis], 3.0)
+    r = to_point(hit, light)
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+def test_rays_from_a_hit_point_that_start_on_its_surface_see_that_surface():
+    # With t_min = 0 the ray from the tile to the light above it meets the tile at t = 0.
+    scene = cube_around_a_tile()
+    r = to_point(tile_hit(scene), (0.0, 0.5, 0.0), t_min=0.0)
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+def test_rays_from_a_hit_point_see_an_object_added_after_the_hit():
+    scene = cube_around_a_tile()
+    hit = tile_hit(scene)
+    scene.add_object(Parallelogram(Vector3D(-0.1, 0.25, 0.1), Vector3D(0.2, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -0.2)))
+    r = to_point(hit, (0.0, 0.5, 0.0))
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+class StudentFloor(Primitive):
+    """A primitive of a student's own, with only intersect(): the plane y = height, normal
+    (0, 1, 0), hit between the ray's t_min and t_max."""
+
+    def __init__(self, height):
+        super().__init__()
+        self.height = height
+        self.rays = []
+
+    def intersect(self, r):
+        self.rays.append(r)
+        if r.d.y == 0.0:
+            return HitData()
+        t = (self.height - r.o.y) / r.d.y
+        if not r.t_min <= t <= r.t_max:
+            return HitData()
+        return HitData(True, r.get_hitpoint(t), Vector3D(0.0, 1.0, 0.0), t)
+
+
+def test_a_primitive_of_ones_own_is_hit_through_its_intersect():
+    # From (1, 2, 3) along (2, -2, 1)/3 the plane y = -1 is (-1 - 2)/(-2/3) = 4.5 away, at
+    # (1 + 3, 2 - 3, 3 + 1.5).
+    floor = StudentFloor(-1.0)
+    scene = Scene()
+    scene.add_object(Sphere(Vector3D(0.0, 10.0, 0.0), 1.0))
+    scene.add_object(floor)
+    d = (2 / 3, -2 / 3, 1 / 3)
+    hit = scene.closest_hit(ray((1, 2, 3), d))
+    assert_hit(hit, (4.0, -1.0, 4.5), (0.0, 1.0, 0.0), 4.5)
+    assert hit.primitive_index == 1
+    seen = floor.rays[-1]
+    assert (type(seen), as_tuple(seen.o), as_tuple(seen.d), seen.t_min, seen.t_max) == (
+        Ray, (1.0, 2.0, 3.0), d, EPSILON, HUGEVALUE)
+    assert scene.closest_hit(ray((1, 2, 3), d, t_min=5.0)).has_hit is False
+    assert scene.closest_hit(ray((1, 2, 3), d, t_max=4.0)).has_hit is False
+    assert scene.any_hit(ray((1, 2, 3), d, t_max=4.0)) is False
+    assert scene.any_hit(ray((1, 2, 3), d, t_max=5.0)) is True
+    assert scene.any_hit(ray((1, 2, 3), (0, 1, 0), t_max=5.0)) is False
+
+
+def test_a_primitive_of_ones_own_casts_shadows():
+    # A floor tile seen at the origin, under a student's plane y = 1: it hides the light
+    # above it, not the one below it.
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(-1.0, 0.0, 1.0), Vector3D(2.0, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -2.0)))
+    scene.add_object(StudentFloor(1.0))
+    for height in (2.0, 0.5):
+        scene.add_point_light_sources(PointLight(Vector3D(0.0, height, 0.0), WHITE_LIGHT))
+    hit = scene.closest_hit(ray((0.0, 0.75, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (0.0, 0.0, 0.0))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[1:]
+    assert [scene.any_hit(student_shadow_ray(hit, light)) for light in scene.pointLights] == [
+        True, False]
 
 
 # ------------------------------------------------------------------------------------------

@@ -763,7 +763,7 @@ def test_parallelogram_point_must_be_finite(bad):
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_plane_origin_must_be_finite(bad):
-    with pytest.raises(ValueError, match="plane_origin"):
+    with pytest.raises(ValueError, match="^InfinitePlane: plane_origin must have finite "):
         InfinitePlane(bad, Vector3D(0.0, 1.0, 0.0))
 
 
@@ -792,7 +792,7 @@ def test_parallelogram_sides_must_not_be_parallel(s2):
 
 
 def test_plane_normal_must_be_non_zero():
-    with pytest.raises(ValueError, match="plane_normal"):
+    with pytest.raises(ValueError, match="^InfinitePlane: plane_normal must not be the zero "):
         InfinitePlane(GOOD, Vector3D(0.0, 0.0, 0.0))
 
 
