@@ -305,7 +305,7 @@ def test_a_direction_at_either_end_of_the_unit_tolerance_is_taken_as_it_is(direc
     normalised = along_d * math.hypot(*direction)
     for hit in (plane.intersect(ray((0, 0, 0), direction)),
                 scene.closest_hit(ray((0, 0, 0), direction))):
-        assert hit.hit_distance == pytest.approx(along_d, rel=1e-15)
+        assert hit.hit_distance == pytest.approx(along_d, rel=1e-15, abs=0.0)
     # any_hit agrees: the hit lies beyond a t_max halfway between the two distances when
     # d is shorter than unit length, before it when d is longer
     halfway = (along_d + normalised) / 2
