@@ -562,6 +562,13 @@ def test_hits_hold_plain_course_vectors(kind):
 
 
 @pytest.mark.parametrize("kind", FACING_THE_CAMERA)
+def test_a_hit_from_intersect_has_no_index_until_closest_hit_gives_it_one(kind):
+    # -1, as in HitData(): only the scene knows where the object is in object_list
+    from_intersect, from_scene = hits_of(FACING_THE_CAMERA[kind]())
+    assert (from_intersect.primitive_index, from_scene.primitive_index) == (-1, 0)
+
+
+@pytest.mark.parametrize("kind", FACING_THE_CAMERA)
 def test_changing_a_returned_hit_changes_neither_the_scene_nor_another_hit(kind):
     obj = FACING_THE_CAMERA[kind]()
     first, second = hits_of(obj)
@@ -935,6 +942,53 @@ def test_rays_from_a_hit_point_see_an_object_added_after_the_hit():
                                    Vector3D(0.0, 0.0, -0.2)))
     r = to_point(hit, (0.0, 0.5, 0.0))
     assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+AXES = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)]
+
+
+def along(*pairs):
+    """The vector sum of factor * AXES[a] over the (factor, a) pairs, as a tuple."""
+    v = [0.0] * 3
+    for factor, a in pairs:
+        v[a] += factor
+    return tuple(v)
+
+
+@pytest.mark.parametrize("far, normal", [(0, 1), (1, 2), (2, 0)], ids=["x", "y", "z"])
+def test_a_light_nearer_to_the_surface_than_the_lift_of_shadow_rays_lights_nothing(far,
+                                                                                     normal):
+    # The point P, 1000 along one axis, on the plane through the origin normal to another,
+    # seen from 1 away: shadow rays start 2^-32 (1000 + 1) = 2.3e-7 above it. A light 1e-7
+    # above P lies on the surface to within that, one 1e-6 above it lights it.
+    scene = Scene()
+    scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(*AXES[normal])))
+    for height in (1e-7, 1e-6):
+        scene.add_point_light_sources(PointLight(
+            Vector3D(*along((1000.0, far), (height, normal))), WHITE_LIGHT))
+    hit = scene.closest_hit(ray(along((1000.0, far), (1.0, normal)),
+                                along((-1.0, normal))))
+    assert as_tuple(hit.hit_point) == along((1000.0, far))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[1:]
+
+
+@pytest.mark.parametrize("axis", range(3), ids=["x", "y", "z"])
+def test_a_ball_between_a_surface_and_a_light_shades_it_whichever_way_the_surface_faces(axis):
+    # In the plane of `axis` (a) and the next one (b): the wall a = -2 faces +a, seen at
+    # P = (-2, 2) from (-1, 2). A ball of radius 0.5 at (-1, 1), halfway from P to the light
+    # at the origin, hides that light; the ray to the light at (0, 4) passes its centre at
+    # sqrt(2).
+    b = (axis + 1) % 3
+    scene = Scene()
+    scene.add_object(InfinitePlane(Vector3D(*along((-2.0, axis))), Vector3D(*AXES[axis])))
+    scene.add_object(Sphere(Vector3D(*along((-1.0, axis), (1.0, b))), 0.5))
+    for position in ((0.0, 0.0, 0.0), along((4.0, b))):
+        scene.add_point_light_sources(PointLight(Vector3D(*position), WHITE_LIGHT))
+    hit = scene.closest_hit(ray(along((-1.0, axis), (2.0, b)), along((-1.0, axis))))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, along((-2.0, axis), (2.0, b)))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[1:]
+    assert [scene.any_hit(student_shadow_ray(hit, light)) for light in scene.pointLights] == [
+        True, False]
 
 
 class StudentFloor(Primitive):
