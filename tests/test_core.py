@@ -727,6 +727,23 @@ def test_student_shadow_rays_from_a_hit_point_see_the_same_lights():
         False, True]
 
 
+def test_visible_lights_of_a_hit_made_by_intersect_tests_every_object():
+    # A hit of the floor's own intersect() has no index in object_list (-1): the wall,
+    # which closest_hit's hits know to test, still hides the left light.
+    scene = floor_and_wall()
+    hit = scene.object_list[0].intersect(ray((0.5, 3.0, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (-1, (0.5, 0.0, 0.0))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[:1]
+
+
+def test_visible_lights_sees_an_object_added_after_the_hit():
+    # A ball added on the way from (0.5, 0, 0) to the right light (0.5 + 0.5 s, s, 0)
+    scene = floor_and_wall()
+    hit = floor_hit(scene)
+    scene.add_object(Sphere(Vector3D(0.75, 0.5, 0.0), 0.2))
+    assert scene.visible_lights(hit) == []
+
+
 def test_a_light_moved_in_place_is_seen_from_its_new_position():
     scene = floor_and_wall()
     assert len(scene.visible_lights(floor_hit(scene))) == 1
