@@ -972,20 +972,22 @@ def along(*pairs):
     return tuple(v)
 
 
-@pytest.mark.parametrize("far, normal", [(0, 1), (1, 2), (2, 0)], ids=["x", "y", "z"])
-def test_a_light_nearer_to_the_surface_than_the_lift_of_shadow_rays_lights_nothing(far,
-                                                                                     normal):
-    # The point P, 1000 along one axis, on the plane through the origin normal to another,
-    # seen from 1 away: shadow rays start 2^-32 (1000 + 1) = 2.3e-7 above it. A light 1e-7
-    # above P lies on the surface to within that, one 1e-6 above it lights it.
+@pytest.mark.parametrize("far, normal, point, eye", [
+    (0, 1, 1000.0, 1.0), (1, 2, 1000.0, 1.0), (2, 0, 1000.0, 1.0), (0, 1, 0.0, 1000.0),
+], ids=["x", "y", "z", "distance"])
+def test_a_light_nearer_to_the_surface_than_the_lift_of_shadow_rays_lights_nothing(
+        far, normal, point, eye):
+    # The point P, `point` along one axis, on the plane through the origin normal to
+    # another, seen from `eye` away: shadow rays start 2^-32 (1000 + 1) = 2.3e-7 (or
+    # 2^-32 1000) above it. A light 1e-7 above P lies on the surface to within that, one
+    # 1e-6 above it lights it.
     scene = Scene()
     scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(*AXES[normal])))
     for height in (1e-7, 1e-6):
         scene.add_point_light_sources(PointLight(
-            Vector3D(*along((1000.0, far), (height, normal))), WHITE_LIGHT))
-    hit = scene.closest_hit(ray(along((1000.0, far), (1.0, normal)),
-                                along((-1.0, normal))))
-    assert as_tuple(hit.hit_point) == along((1000.0, far))
+            Vector3D(*along((point, far), (height, normal))), WHITE_LIGHT))
+    hit = scene.closest_hit(ray(along((point, far), (eye, normal)), along((-1.0, normal))))
+    assert as_tuple(hit.hit_point) == along((point, far))
     assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[1:]
 
 
