@@ -978,17 +978,32 @@ def along(*pairs):
 def test_a_light_nearer_to_the_surface_than_the_lift_of_shadow_rays_lights_nothing(
         far, normal, point, eye):
     # The point P, `point` along one axis, on the plane through the origin normal to
-    # another, seen from `eye` away: shadow rays start 2^-32 (1000 + 1) = 2.3e-7 (or
-    # 2^-32 1000) above it. A light 1e-7 above P lies on the surface to within that, one
-    # 1e-6 above it lights it.
+    # another, seen from `eye` away: shadow rays start lift = 2^-32 (1000 + 1) = 2.3e-7 (or
+    # 2^-32 1000) above it. A light 1e-7 above P, or exactly the lift above it, lies on the
+    # surface to within that; one 1e-6 above it lights it.
+    lift = (point + eye) * 2.0 ** -32
     scene = Scene()
     scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(*AXES[normal])))
-    for height in (1e-7, 1e-6):
+    for height in (1e-7, lift, 1e-6):
         scene.add_point_light_sources(PointLight(
             Vector3D(*along((point, far), (height, normal))), WHITE_LIGHT))
     hit = scene.closest_hit(ray(along((point, far), (eye, normal)), along((-1.0, normal))))
     assert as_tuple(hit.hit_point) == along((point, far))
-    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[1:]
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[2:]
+
+
+def test_a_lamp_on_the_ceiling_lights_the_floor_below_it_far_from_the_origin():
+    # Floor y = 0 and ceiling y = 0.1, 1000 from the origin; the lamp lies on the ceiling,
+    # 0.1 above the point seen. The shadow ray stops short of the lamp, so the ceiling the
+    # lamp lies on does not hide it, although the ray starts 2.3e-7 above the floor, more
+    # than 1e-6 of the way to the lamp.
+    scene = Scene()
+    scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0)))
+    scene.add_object(InfinitePlane(Vector3D(0.0, 0.1, 0.0), Vector3D(0.0, -1.0, 0.0)))
+    scene.add_point_light_sources(PointLight(Vector3D(1000.0, 0.1, 0.0), WHITE_LIGHT))
+    hit = scene.closest_hit(ray((1000.0, 0.05, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (1000.0, 0.0, 0.0))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights
 
 
 @pytest.mark.parametrize("axis", range(3), ids=["x", "y", "z"])
