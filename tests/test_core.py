@@ -519,6 +519,25 @@ def test_closest_hit_beyond_t_max_of_nearer_objects():
     assert hit.primitive_index == 1
 
 
+@pytest.mark.parametrize("axis", range(3), ids=["x", "y", "z"])
+def test_rays_from_points_on_an_axis_hit_what_the_camera_cannot_see_there(axis):
+    # From 5 along an axis, down the next axis, to the ball of radius 1 at 5 along the first
+    # and -5 along the next: 4 away. From the camera, at the origin, that direction misses
+    # the ball; from a point on an axis it does not.
+    nxt = (axis + 1) % 3
+    scene = Scene()
+    scene.add_object(Sphere(Vector3D(0.0, 0.0, 50.0), 1.0))  # out of the way
+    centre = [0.0] * 3
+    centre[axis], centre[nxt] = 5.0, -5.0
+    scene.add_object(Sphere(Vector3D(*centre), 1.0))
+    origin, direction = [0.0] * 3, [0.0] * 3
+    origin[axis], direction[nxt] = 5.0, -1.0
+    hit = scene.closest_hit(ray(origin, direction))
+    assert (hit.primitive_index, hit.hit_distance) == (1, pytest.approx(4.0))
+    assert scene.any_hit(ray(origin, direction)) is True
+    assert scene.closest_hit(ray((0, 0, 0), direction)).has_hit is False
+
+
 def test_closest_hit_miss_has_no_hit():
     scene = overlapping(("far", "near", "aside"))
     assert scene.closest_hit(ray((0, 0, 0), (0, 1, 0))).has_hit is False
