@@ -202,6 +202,17 @@ def test_closest_hit_equals_brute_force_minimum(object_list, origin, direction):
     assert as_tuple(own.normal) == pytest.approx(as_tuple(closest.normal), abs=1e-9)
 
 
+def test_a_sphere_smaller_than_the_rounding_of_its_position_faces_the_ray():
+    # 3e17 away, neighbouring coordinates are 16 to 32 apart: the unit sphere is a single
+    # point there, and its normal at the hit is the one facing the ray, -d = -(1, 2, -2)/3.
+    sphere = Sphere(Vector3D(1e17, 2e17, -2e17), 1.0)
+    hit = sphere.intersect(Ray(Vector3D(0.0, 0.0, 0.0), Vector3D(1.0, 2.0, -2.0), 1e18))
+    assert hit.has_hit
+    assert as_tuple(hit.normal) == pytest.approx((-1 / 3, -2 / 3, 2 / 3), abs=1e-15)
+    assert as_tuple(hit.hit_point) == pytest.approx((1e17, 2e17, -2e17), rel=1e-15)
+    assert hit.hit_distance == pytest.approx(3e17, rel=1e-15)
+
+
 # ------------------------------------------------------------------------------------------
 # Property-based: the length of the direction vector does not matter
 # ------------------------------------------------------------------------------------------
