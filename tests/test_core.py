@@ -538,6 +538,17 @@ def test_rays_from_points_on_an_axis_hit_what_the_camera_cannot_see_there(axis):
     assert scene.closest_hit(ray((0, 0, 0), direction)).has_hit is False
 
 
+@pytest.mark.parametrize("shift, winner", [(0.0, 0), (1e-11, 0), (1e-9, 1)],
+                         ids=["tie", "nearer-by-1e-11", "nearer-by-1e-9"])
+def test_closest_hit_keeps_the_first_of_two_surfaces_at_the_same_distance(shift, winner):
+    # Two planes 4 away, the second nearer by shift (relative): within a ten-billionth the
+    # first one added wins, whatever rounding makes of the two distances.
+    scene = Scene()
+    for z in (-4.0, -4.0 * (1.0 - shift)):
+        scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, z), Vector3D(0.0, 0.0, 1.0)))
+    assert scene.closest_hit(ray((0, 0, 0), (0, 0, -1))).primitive_index == winner
+
+
 def test_closest_hit_miss_has_no_hit():
     scene = overlapping(("far", "near", "aside"))
     assert scene.closest_hit(ray((0, 0, 0), (0, 1, 0))).has_hit is False
