@@ -982,6 +982,41 @@ def test_rays_from_a_hit_point_that_start_on_its_surface_see_that_surface():
     assert scene.any_hit(r) is hits_anything(scene, r) is True
 
 
+def test_rays_from_a_hit_point_far_away_that_skip_less_than_its_rounding_see_its_surface():
+    # A million from the origin the hit point lies off its tilted tile by rounding, some
+    # 1e-10. A ray from it with t_min = 1e-12 towards the light above the tile can meet the
+    # tile right away; this one does, as testing every object finds.
+    scene = Scene()
+    tile = Parallelogram(Vector3D(1e6, 1e6, -1e6), Vector3D(300.0, 100.0, 0.0),
+                         Vector3D(0.0, 100.0, -300.0))
+    scene.add_object(tile)
+    n = tile.normal
+    light = PointLight(Vector3D(1e6 + 150.0, 1e6 + 100.0, -1e6 - 150.0) + n * 500.0,
+                       WHITE_LIGHT)
+    scene.add_point_light_sources(light)
+    eye = Vector3D(1000236.4162440295, 1000172.0820249226, -1000114.3091659487)
+    seen = Vector3D(1000250.7295311759, 1000126.8532171826, -1000129.8301203715)
+    hit = scene.closest_hit(Ray(eye, Normalize(seen - eye)))
+    assert hit.has_hit
+    r = to_point(hit, as_tuple(light.pos), t_min=1e-12)
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+def test_rays_from_a_hit_point_in_a_tiny_scene_to_just_past_a_light_see_what_is_there():
+    # A scene 1e-4 across: a tile at the origin, a light 1e-4 along x and a wall 1e-7
+    # beyond the light. The ray to the point 1e-6 beyond the light crosses the wall.
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(-2.5e-5, 0.0, 2.5e-5), Vector3D(5e-5, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -5e-5)))
+    scene.add_object(Parallelogram(Vector3D(1e-4 + 1e-7, -1e-4, -1e-4),
+                                   Vector3D(0.0, 2e-4, 0.0), Vector3D(0.0, 0.0, 2e-4)))
+    scene.add_point_light_sources(PointLight(Vector3D(1e-4, 0.0, 0.0), WHITE_LIGHT))
+    hit = scene.closest_hit(ray((0.0, 1e-5, 0.0), (0.0, -1.0, 0.0), t_min=1e-9))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (0.0, 0.0, 0.0))
+    r = to_point(hit, (1e-4 + 1e-6, 0.0, 0.0), t_min=1e-9)
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
 def test_rays_from_a_hit_point_see_an_object_added_after_the_hit():
     scene = cube_around_a_tile()
     hit = tile_hit(scene)
