@@ -161,8 +161,11 @@ def test_normalize_divides_by_the_length():
 
 
 def test_normalize_of_the_zero_vector_raises_value_error():
-    with pytest.raises(ValueError, match="zero vector"):
+    with pytest.raises(ValueError) as error:
         Normalize(Vector3D(0.0, 0.0, 0.0))
+    assert str(error.value) == ("Normalize: cannot normalise the zero vector "
+                                "Vector3D(0.0, 0.0, 0.0), it has no direction; check how the "
+                                "vector was computed")
 
 
 @pytest.mark.parametrize("direction, expected", [
