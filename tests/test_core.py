@@ -1203,6 +1203,22 @@ def test_saved_png_is_the_tonemapped_image(saved):
     np.testing.assert_allclose(png[:, :, :3], expected, atol=1.01 / 255)
 
 
+def test_save_image_before_set_camera_says_to_set_the_camera_and_render(tmp_path):
+    with pytest.raises(RuntimeError, match=r"^Scene\.save_image: the scene has no image yet; "
+                                           r"call scene\.set_camera\(camera\) and render "
+                                           r"first$"):
+        Scene().save_image(str(tmp_path / "image"))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_save_image_says_when_opencv_cannot_encode_the_hdr_file(tmp_path, monkeypatch):
+    monkeypatch.setattr(PyRT_Core.cv2, "imencode", lambda *args: (False, None))
+    with pytest.raises(RuntimeError, match=r"^Scene\.save_image: OpenCV could not encode the "
+                                           r"HDR image$"):
+        scene_with_image(sample_image()).save_image(str(tmp_path / "image"))
+    assert not (tmp_path / "image.hdr").exists()
+
+
 def test_save_image_overwrites_previous_files(tmp_path):
     base = str(tmp_path / "picture")
     scene_with_image(np.ones((2, 2, 3))).save_image(base)

@@ -837,7 +837,8 @@ def test_lambertian_needs_an_rgb_colour(colour):
 @pytest.mark.parametrize("obj", [Lambertian(BLACK), Vector3D(0.0, 0.0, 0.0), "sphere", None])
 def test_add_object_needs_a_primitive(obj):
     scene = Scene()
-    with pytest.raises(TypeError, match="obj"):
+    with pytest.raises(TypeError, match=r"^Scene\.add_object: obj must be a Primitive \(Sphere, "
+                       r"InfinitePlane, Parallelogram or your own subclass\), got "):
         scene.add_object(obj)
     assert scene.object_list == []
 
