@@ -718,36 +718,36 @@ PIXEL_COUNTS = [(0, ValueError), (-1, ValueError), (2.5, ValueError), (True, Typ
 
 @pytest.mark.parametrize("width, exception", PIXEL_COUNTS)
 def test_camera_width_must_be_a_positive_integer(width, exception):
-    with pytest.raises(exception, match="width"):
+    with pytest.raises(exception, match="^Camera: width must be a "):
         Camera(width, 10, 60)
 
 
 @pytest.mark.parametrize("height, exception", PIXEL_COUNTS)
 def test_camera_height_must_be_a_positive_integer(height, exception):
-    with pytest.raises(exception, match="height"):
+    with pytest.raises(exception, match="^Camera: height must be a "):
         Camera(10, height, 60)
 
 
 @pytest.mark.parametrize("fov", [0, 180, -5, 200, NAN, INF])
 def test_camera_fov_must_lie_strictly_between_0_and_180(fov):
-    with pytest.raises(ValueError, match="vertical_fov"):
+    with pytest.raises(ValueError, match="^Camera: vertical_fov_ "):
         Camera(10, 10, fov)
 
 
 @pytest.mark.parametrize("fov", ["60", True, None])
 def test_camera_fov_must_be_a_number(fov):
-    with pytest.raises(TypeError, match="vertical_fov"):
+    with pytest.raises(TypeError, match="^Camera: vertical_fov_ must be a number, got "):
         Camera(10, 10, fov)
 
 
 @pytest.mark.parametrize("radius", [0, -1, INF, NAN])
 def test_sphere_radius_must_be_positive_and_finite(radius):
-    with pytest.raises(ValueError, match="sphere_radius"):
+    with pytest.raises(ValueError, match="^Sphere: sphere_radius must be positive and finite"):
         Sphere(GOOD, radius)
 
 
 def test_sphere_radius_must_be_a_number():
-    with pytest.raises(TypeError, match="sphere_radius"):
+    with pytest.raises(TypeError, match="^Sphere: sphere_radius must be a number, got "):
         Sphere(GOOD, "2")
 
 
@@ -756,19 +756,19 @@ BAD_VECTORS = [Vector3D(NAN, 0.0, 0.0), Vector3D(0.0, INF, 0.0), Vector3D(0.0, 0
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_sphere_origin_must_be_finite(bad):
-    with pytest.raises(ValueError, match="sphere_origin"):
+    with pytest.raises(ValueError, match="^Sphere: sphere_origin must have finite components"):
         Sphere(bad, 1.0)
 
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_point_light_position_must_be_finite(bad):
-    with pytest.raises(ValueError, match="pos_"):
+    with pytest.raises(ValueError, match="^PointLight: pos_ must have finite components"):
         PointLight(bad, RGBColor(1.0, 1.0, 1.0))
 
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_parallelogram_point_must_be_finite(bad):
-    with pytest.raises(ValueError, match="point"):
+    with pytest.raises(ValueError, match="^Parallelogram: point must have finite components"):
         Parallelogram(bad, Vector3D(1.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0))
 
 
@@ -779,7 +779,7 @@ def test_plane_origin_must_be_finite(bad):
 
 
 def test_sphere_origin_must_be_a_vector():
-    with pytest.raises(TypeError, match="sphere_origin"):
+    with pytest.raises(TypeError, match="^Sphere: sphere_origin must be a Vector3D, got "):
         Sphere((0.0, 0.0, -5.0), 1.0)
 
 
@@ -787,7 +787,7 @@ def test_sphere_origin_must_be_a_vector():
 def test_parallelogram_sides_must_be_non_zero(name):
     sides = {"s1": Vector3D(1.0, 0.0, 0.0), "s2": Vector3D(0.0, 1.0, 0.0)}
     sides[name] = Vector3D(0.0, 0.0, 0.0)
-    with pytest.raises(ValueError, match=name):
+    with pytest.raises(ValueError, match=f"^Parallelogram: {name} must not be the zero vector"):
         Parallelogram(GOOD, sides["s1"], sides["s2"])
 
 
@@ -830,7 +830,7 @@ def test_depth_integrator_max_depth_must_be_positive(max_depth):
 
 @pytest.mark.parametrize("colour", [(0.5, 0.5, 0.5), Vector3D(0.5, 0.5, 0.5), 0.5, None])
 def test_lambertian_needs_an_rgb_colour(colour):
-    with pytest.raises(TypeError, match="diffuse_colour"):
+    with pytest.raises(TypeError, match="^Lambertian: diffuse_colour must be a RGBColor, got "):
         Lambertian(colour)
 
 
