@@ -800,6 +800,27 @@ def test_parallelogram_sides_must_not_be_parallel(s2):
     with pytest.raises(ValueError, match="parallel") as error:
         Parallelogram(GOOD, Vector3D(1.0, 2.0, 3.0), s2)
     assert "s1" in str(error.value) and "s2" in str(error.value)
+    assert str(error.value).startswith("Parallelogram: s1 ")
+    assert str(error.value).endswith(", so they span no area; give two sides that point in "
+                                     "different directions")
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: Scene().set_ambient((0.1, 0.2, 0.3)), "^Scene\\.set_ambient: i_a must be a RGBColor"),
+    (lambda: Sphere(GOOD, 1.0, emission=(1.0, 1.0, 1.0)), "^Sphere: emission must be a RGBColor"),
+    (lambda: PointLight(GOOD, 80.0), "^PointLight: intensity_ must be a RGBColor"),
+], ids=["ambient", "emission", "intensity"])
+def test_colours_that_are_not_rgb_colours_are_refused_naming_the_argument(make, message):
+    with pytest.raises(TypeError, match=message):
+        make()
+
+
+@pytest.mark.parametrize("direction", [Vector3D(0.0, 0.0, 0.0), Vector3D(NAN, 0.0, 1.0)],
+                         ids=["zero", "nan"])
+def test_a_ray_with_no_direction_is_refused_with_what_to_do(direction):
+    with pytest.raises(ValueError, match=r"^the ray direction must be a non-zero finite vector, "
+                                         r"got .*; set ray\.d before tracing the ray$"):
+        Sphere(GOOD, 1.0).intersect(Ray(Vector3D(0.0, 0.0, 0.0), direction))
 
 
 def test_plane_normal_must_be_non_zero():
