@@ -1146,6 +1146,23 @@ def test_a_primitive_of_ones_own_casts_shadows():
         True, False]
 
 
+def test_a_scene_sent_to_a_worker_process_arrives_whole():
+    # Worker processes get the scene pickled: it must answer every query as the original.
+    import pickle
+    scene = floor_and_wall()
+    scene.set_ambient(RGBColor(0.1, 0.2, 0.3))
+    scene.object_list[0].set_BRDF(Lambertian(RGBColor(0.5, 0.25, 1.0)))
+    scene.set_camera(Camera(4, 3, 60))
+    copy = pickle.loads(pickle.dumps(scene))
+    assert (rgb(copy.i_a), copy.camera.width, copy.camera.height) == ((0.1, 0.2, 0.3), 4, 3)
+    assert copy.camera.get_direction(1, 2) == scene.camera.get_direction(1, 2)
+    assert [as_tuple(light.pos) for light in copy.pointLights] == [as_tuple(RIGHT),
+                                                                   as_tuple(LEFT)]
+    assert rgb(copy.object_list[0].get_BRDF().kd) == rgb(scene.object_list[0].BRDF.kd)
+    hit = floor_hit(copy)
+    assert [copy.pointLights.index(light) for light, _, _ in copy.visible_lights(hit)] == [0]
+
+
 # ------------------------------------------------------------------------------------------
 # Saving images
 # ------------------------------------------------------------------------------------------
