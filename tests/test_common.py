@@ -72,6 +72,14 @@ def test_vector_addition_and_subtraction_work_per_component():
     assert as_tuple(a - b) == (0.5, 3.0, -1.0)
 
 
+def test_vector_negation_flips_every_component():
+    v = Vector3D(1.0, -2.0, 3.0)
+    negated = -v
+    assert type(negated) == Vector3D and negated is not v
+    assert as_tuple(negated) == (-1.0, 2.0, -3.0)
+    assert as_tuple(v) == (1.0, -2.0, 3.0)
+
+
 def test_vector_operators_leave_their_operands_unchanged():
     a, b = Vector3D(1.0, 2.0, 3.0), Vector3D(0.5, -1.0, 4.0)
     _ = a + b, a - b, a * 2.0, a / 2.0, a.multiply(b)
