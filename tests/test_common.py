@@ -252,6 +252,8 @@ def test_a_constant_changed_in_place_is_reported_with_the_fix_and_restored(
     message = str(error.value)
     assert message.startswith("Scene.save_image: ")
     assert f"shared colour {name} was changed" in message
+    changed = [value + 0.5 if c == channel else value for c, value in zip("rgb", expected)]
+    assert f"changed in place to RGBColor({changed[0]}, {changed[1]}, {changed[2]})," in message
     assert f"color = RGBColor{expected}" in message  # what to write instead
     assert rgb(constant) == expected
 
