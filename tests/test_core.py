@@ -432,6 +432,7 @@ def test_lambertian_value_is_black_when_light_is_not_above(wi):
     value = brdf.get_value(Vector3D(*wi), Vector3D(0.0, 0.0, 1.0), Vector3D(0.0, 0.0, 1.0))
     assert type(value) == RGBColor
     assert value == BLACK and rgb(value) == (0.0, 0.0, 0.0)
+    assert value is BLACK  # "else BLACK", as the docstring says, grazing light (n.wi = 0) too
 
 
 def test_point_light_attributes():

@@ -815,8 +815,8 @@ def test_colours_that_are_not_rgb_colours_are_refused_naming_the_argument(make, 
         make()
 
 
-@pytest.mark.parametrize("direction", [Vector3D(0.0, 0.0, 0.0), Vector3D(NAN, 0.0, 1.0)],
-                         ids=["zero", "nan"])
+@pytest.mark.parametrize("direction", [Vector3D(0.0, 0.0, 0.0), Vector3D(NAN, 0.0, 1.0),
+                                       Vector3D(INF, 0.0, 0.0)], ids=["zero", "nan", "infinite"])
 def test_a_ray_with_no_direction_is_refused_with_what_to_do(direction):
     with pytest.raises(ValueError, match=r"^the ray direction must be a non-zero finite vector, "
                                          r"got .*; set ray\.d before tracing the ray$"):
