@@ -815,6 +815,17 @@ def test_colours_that_are_not_rgb_colours_are_refused_naming_the_argument(make, 
         make()
 
 
+def test_set_camera_needs_a_camera():
+    with pytest.raises(TypeError, match=r"^Scene\.set_camera: camera must be a Camera, got "):
+        Scene().set_camera((500, 500, 60))
+
+
+def test_set_brdf_needs_a_brdf_and_names_the_class():
+    with pytest.raises(TypeError, match=r"^Sphere\.set_BRDF: brdf must be a BRDF such as "
+                                        r"Lambertian\(RGBColor\(\.\.\.\)\), got "):
+        Sphere(GOOD, 1.0).set_BRDF(RGBColor(0.5, 0.5, 0.5))
+
+
 @pytest.mark.parametrize("direction", [Vector3D(0.0, 0.0, 0.0), Vector3D(NAN, 0.0, 1.0),
                                        Vector3D(INF, 0.0, 0.0)], ids=["zero", "nan", "infinite"])
 def test_a_ray_with_no_direction_is_refused_with_what_to_do(direction):
