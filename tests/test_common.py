@@ -1,7 +1,6 @@
 """Unit tests for PyRT_Common: vectors, colours, rays, hit records and the environment map."""
 import abc
 import math
-import re
 
 import cv2
 import matplotlib.pyplot
@@ -73,6 +72,14 @@ def test_vector_addition_and_subtraction_work_per_component():
     assert as_tuple(a - b) == (0.5, 3.0, -1.0)
 
 
+def test_vector_negation_flips_every_component():
+    v = Vector3D(1.0, -2.0, 3.0)
+    negated = -v
+    assert type(negated) == Vector3D and negated is not v
+    assert as_tuple(negated) == (-1.0, 2.0, -3.0)
+    assert as_tuple(v) == (1.0, -2.0, 3.0)
+
+
 def test_vector_operators_leave_their_operands_unchanged():
     a, b = Vector3D(1.0, 2.0, 3.0), Vector3D(0.5, -1.0, 4.0)
     _ = a + b, a - b, a * 2.0, a / 2.0, a.multiply(b)
@@ -121,6 +128,23 @@ def test_star_between_two_vectors_or_colours_is_a_clear_type_error(make):
 
 
 @pytest.mark.parametrize("make", [Vector3D, RGBColor])
+def test_the_star_error_names_the_class_and_the_method_to_use(make):
+    name = make.__name__
+    with pytest.raises(TypeError) as error:
+        make(1.0, 2.0, 3.0) * make(4.0, 5.0, 6.0)
+    assert str(error.value) == (f"multiply a {name} by a number only; for the element-wise "
+                                f"product of two {name} objects use a.multiply(b)")
+
+
+@pytest.mark.parametrize("make", [Vector3D, RGBColor])
+def test_the_division_error_names_the_class(make):
+    with pytest.raises(TypeError, match=f"^multiply a {make.__name__} by a number only; "
+                                        f"for the element-wise product of two "
+                                        f"{make.__name__} objects"):
+        make(1.0, 2.0, 3.0) / make(4.0, 5.0, 6.0)
+
+
+@pytest.mark.parametrize("make", [Vector3D, RGBColor])
 def test_dividing_by_a_vector_or_colour_is_a_type_error(make):
     with pytest.raises(TypeError):
         make(1.0, 2.0, 3.0) / make(4.0, 5.0, 6.0)
@@ -153,8 +177,11 @@ def test_normalize_divides_by_the_length():
 
 
 def test_normalize_of_the_zero_vector_raises_value_error():
-    with pytest.raises(ValueError, match="zero vector"):
+    with pytest.raises(ValueError) as error:
         Normalize(Vector3D(0.0, 0.0, 0.0))
+    assert str(error.value) == ("Normalize: cannot normalise the zero vector "
+                                "Vector3D(0.0, 0.0, 0.0), it has no direction; check how the "
+                                "vector was computed")
 
 
 @pytest.mark.parametrize("direction, expected", [
@@ -166,6 +193,13 @@ def test_normalize_of_the_zero_vector_raises_value_error():
 def test_orient_normal_flips_only_when_dot_is_negative(direction, expected):
     normal = Vector3D(0.0, 0.0, 1.0)
     assert as_tuple(orient_normal(normal, Vector3D(*direction))) == expected
+
+
+def test_orient_normal_flips_every_component():
+    # n.d = (1, -2, 3).(0, 0, -1) = -3 < 0: the normal becomes -n = (-1, 2, -3)
+    flipped = orient_normal(Vector3D(1.0, -2.0, 3.0), Vector3D(0.0, 0.0, -1.0))
+    assert type(flipped) == Vector3D
+    assert as_tuple(flipped) == (-1.0, 2.0, -3.0)
 
 
 # ------------------------------------------------------------------------------------------
@@ -218,6 +252,8 @@ def test_a_constant_changed_in_place_is_reported_with_the_fix_and_restored(
     message = str(error.value)
     assert message.startswith("Scene.save_image: ")
     assert f"shared colour {name} was changed" in message
+    changed = [value + 0.5 if c == channel else value for c, value in zip("rgb", expected)]
+    assert f"changed in place to RGBColor({changed[0]}, {changed[1]}, {changed[2]})," in message
     assert f"color = RGBColor{expected}" in message  # what to write instead
     assert rgb(constant) == expected
 
@@ -319,6 +355,16 @@ def test_hitdata_keeps_its_arguments():
             hit.primitive_index) == (True, p, n, 4.5, 2)
 
 
+def test_hitdata_repr_of_a_miss_says_only_that():
+    assert repr(HitData()) == "HitData(has_hit=False)"
+
+
+def test_hitdata_repr_of_a_hit_shows_every_field():
+    hit = HitData(True, Vector3D(1.0, 2.0, 3.0), Vector3D(0.0, 1.0, 0.0), 4.5, 2)
+    assert repr(hit) == ("HitData(has_hit=True, hit_point=Vector3D(1.0, 2.0, 3.0), "
+                         "normal=Vector3D(0.0, 1.0, 0.0), hit_distance=4.5, primitive_index=2)")
+
+
 # ------------------------------------------------------------------------------------------
 # EnvironmentMap
 # ------------------------------------------------------------------------------------------
@@ -338,8 +384,19 @@ def env_map(tmp_path):
 
 def test_environment_map_missing_file_names_the_path(tmp_path):
     path = tmp_path / "no_such_map.hdr"
-    with pytest.raises(FileNotFoundError, match=re.escape(str(path))):
+    with pytest.raises(FileNotFoundError) as error:
         EnvironmentMap(str(path))
+    assert str(error.value) == (f"EnvironmentMap: no image file at {str(path)!r}; give the "
+                                "path of a latitude-longitude .hdr image")
+
+
+def test_environment_map_that_is_no_image_names_the_file_and_the_formats(tmp_path):
+    path = tmp_path / "notes.hdr"
+    path.write_text("not an image")
+    with pytest.raises(ValueError) as error:
+        EnvironmentMap(path)
+    assert str(error.value) == (f"EnvironmentMap: OpenCV cannot read {str(path)!r}; give it "
+                                "an .hdr (Radiance) or .exr latitude-longitude image")
 
 
 def test_environment_map_is_stored_as_rgb(env_map):

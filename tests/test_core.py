@@ -12,7 +12,8 @@ from hypothesis import strategies as st
 
 import PyRT_Core
 from helpers import PNG_TOLERANCE, read_png
-from PyRT_Common import BLACK, Cross, Length, Normalize, RGBColor, Ray, Vector3D
+from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, Cross, HitData, Length, Normalize, RGBColor,
+                         Ray, Vector3D)
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight,
                        Primitive, Scene, Sphere)
 
@@ -274,6 +275,43 @@ def test_plane_respects_t_max():
     assert floor_plane().intersect(ray((0, 0, 0), (0, -1, 0), t_max=0.5)).has_hit is False
 
 
+def test_plane_hit_at_exactly_t_max_counts():
+    hit = floor_plane().intersect(ray((0, 0, 0), (0, -1, 0), t_max=1.0))
+    assert_hit(hit, (0.0, -1.0, 0.0), (0.0, 1.0, 0.0), 1.0)
+
+
+def test_plane_hit_from_a_point_off_every_axis():
+    # The plane through (0, 0, -4) with normal n = (2, -1, 2)/3, from o = (1, 1, 1) down -z:
+    # t = (p - o).n / d.n = ((-1, -1, -5).(2, -1, 2)/3) / (-2/3) = (-11/3) / (-2/3) = 5.5
+    plane = InfinitePlane(Vector3D(0.0, 0.0, -4.0), Vector3D(2.0, -1.0, 2.0))
+    assert_hit(plane.intersect(ray((1, 1, 1), (0, 0, -1))),
+               (1.0, 1.0, -4.5), (2 / 3, -1 / 3, 2 / 3), 5.5)
+
+
+# Squared lengths at the two ends of the range that is taken as unit length, 1 -+ 1e-12:
+# 0.5^2 + 0.8660254037838613^2 and 1.0000000000005^2 round to exactly 1 - 1e-12 and 1 + 1e-12.
+EDGES_OF_UNIT_LENGTH = [(0.0, 0.5, -0.8660254037838613), (0.0, 0.0, -1.0000000000005)]
+
+
+@pytest.mark.parametrize("direction", EDGES_OF_UNIT_LENGTH, ids=["shortest", "longest"])
+def test_a_direction_at_either_end_of_the_unit_tolerance_is_taken_as_it_is(direction):
+    # The plane z = -1 lies (-1 - 0) / d.z = 1 / |d.z| along d itself; normalising d first
+    # would move the hit by about 5e-13.
+    assert direction[0] ** 2 + direction[1] ** 2 + direction[2] ** 2 in (1 - 1e-12, 1 + 1e-12)
+    plane = InfinitePlane(Vector3D(0.0, 0.0, -1.0), Vector3D(0.0, 0.0, 1.0))
+    scene = Scene()
+    scene.add_object(plane)
+    along_d = 1.0 / -direction[2]
+    normalised = along_d * math.hypot(*direction)
+    for hit in (plane.intersect(ray((0, 0, 0), direction)),
+                scene.closest_hit(ray((0, 0, 0), direction))):
+        assert hit.hit_distance == pytest.approx(along_d, rel=1e-15, abs=0.0)
+    # any_hit agrees: the hit lies beyond a t_max halfway between the two distances when
+    # d is shorter than unit length, before it when d is longer
+    halfway = (along_d + normalised) / 2
+    assert scene.any_hit(ray((0, 0, 0), direction, t_max=halfway)) is (along_d < halfway)
+
+
 # ------------------------------------------------------------------------------------------
 # Parallelogram
 # ------------------------------------------------------------------------------------------
@@ -394,6 +432,7 @@ def test_lambertian_value_is_black_when_light_is_not_above(wi):
     value = brdf.get_value(Vector3D(*wi), Vector3D(0.0, 0.0, 1.0), Vector3D(0.0, 0.0, 1.0))
     assert type(value) == RGBColor
     assert value == BLACK and rgb(value) == (0.0, 0.0, 0.0)
+    assert value is BLACK  # "else BLACK", as the docstring says, grazing light (n.wi = 0) too
 
 
 def test_point_light_attributes():
@@ -481,6 +520,36 @@ def test_closest_hit_beyond_t_max_of_nearer_objects():
     assert hit.primitive_index == 1
 
 
+@pytest.mark.parametrize("axis", range(3), ids=["x", "y", "z"])
+def test_rays_from_points_on_an_axis_hit_what_the_camera_cannot_see_there(axis):
+    # From 5 along an axis, down the next axis, to the ball of radius 1 at 5 along the first
+    # and -5 along the next: 4 away. From the camera, at the origin, that direction misses
+    # the ball; from a point on an axis it does not.
+    nxt = (axis + 1) % 3
+    scene = Scene()
+    scene.add_object(Sphere(Vector3D(0.0, 0.0, 50.0), 1.0))  # out of the way
+    centre = [0.0] * 3
+    centre[axis], centre[nxt] = 5.0, -5.0
+    scene.add_object(Sphere(Vector3D(*centre), 1.0))
+    origin, direction = [0.0] * 3, [0.0] * 3
+    origin[axis], direction[nxt] = 5.0, -1.0
+    hit = scene.closest_hit(ray(origin, direction))
+    assert (hit.primitive_index, hit.hit_distance) == (1, pytest.approx(4.0))
+    assert scene.any_hit(ray(origin, direction)) is True
+    assert scene.closest_hit(ray((0, 0, 0), direction)).has_hit is False
+
+
+@pytest.mark.parametrize("shift, winner", [(0.0, 0), (1e-11, 0), (1e-9, 1)],
+                         ids=["tie", "nearer-by-1e-11", "nearer-by-1e-9"])
+def test_closest_hit_keeps_the_first_of_two_surfaces_at_the_same_distance(shift, winner):
+    # Two planes 4 away, the second nearer by shift (relative): within a ten-billionth the
+    # first one added wins, whatever rounding makes of the two distances.
+    scene = Scene()
+    for z in (-4.0, -4.0 * (1.0 - shift)):
+        scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, z), Vector3D(0.0, 0.0, 1.0)))
+    assert scene.closest_hit(ray((0, 0, 0), (0, 0, -1))).primitive_index == winner
+
+
 def test_closest_hit_miss_has_no_hit():
     scene = overlapping(("far", "near", "aside"))
     assert scene.closest_hit(ray((0, 0, 0), (0, 1, 0))).has_hit is False
@@ -524,6 +593,13 @@ def test_hits_hold_plain_course_vectors(kind):
 
 
 @pytest.mark.parametrize("kind", FACING_THE_CAMERA)
+def test_a_hit_from_intersect_has_no_index_until_closest_hit_gives_it_one(kind):
+    # -1, as in HitData(): only the scene knows where the object is in object_list
+    from_intersect, from_scene = hits_of(FACING_THE_CAMERA[kind]())
+    assert (from_intersect.primitive_index, from_scene.primitive_index) == (-1, 0)
+
+
+@pytest.mark.parametrize("kind", FACING_THE_CAMERA)
 def test_changing_a_returned_hit_changes_neither_the_scene_nor_another_hit(kind):
     obj = FACING_THE_CAMERA[kind]()
     first, second = hits_of(obj)
@@ -549,6 +625,77 @@ def test_any_hit_true_when_something_is_hit():
 @pytest.mark.parametrize("direction, t_max", [((0, 1, 0), 1e6), ((0, 0, -1), 3.5)])
 def test_any_hit_false_on_a_miss_or_beyond_t_max(direction, t_max):
     assert overlapping(("far", "near")).any_hit(ray((0, 0, 0), direction, t_max=t_max)) is False
+
+
+def test_any_hit_measures_t_max_as_a_distance_along_a_direction_not_of_unit_length():
+    # (1, 1, -1) reaches the plane z = -2 after a distance of 2 sqrt(3) = 3.46
+    scene = Scene()
+    scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, -2.0), Vector3D(0.0, 0.0, 1.0)))
+    assert scene.closest_hit(ray((0, 0, 0), (1, 1, -1))).hit_distance == pytest.approx(
+        2 * math.sqrt(3), rel=1e-15)
+    assert scene.any_hit(ray((0, 0, 0), (1, 1, -1), t_max=3.4)) is False
+    assert scene.any_hit(ray((0, 0, 0), (1, 1, -1), t_max=3.5)) is True
+
+
+def test_an_object_added_after_a_query_is_seen_by_the_next_one():
+    scene = overlapping(("far",))
+    assert scene.closest_hit(ray((0, 0, 0), (0, 0, -1))).hit_distance == pytest.approx(9.0)
+    scene.add_object(Sphere(Vector3D(0.0, 0.0, -5.0), 1.0))
+    hit = scene.closest_hit(ray((0, 0, 0), (0, 0, -1)))
+    assert (hit.primitive_index, hit.hit_distance) == (1, pytest.approx(4.0))
+    assert scene.any_hit(ray((0, 0, 0), (0, 0, -1), t_max=5.0)) is True
+
+
+def test_a_sphere_moved_again_and_again_is_hit_where_it_is_now():
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 1.0)
+    scene = Scene()
+    scene.add_object(sphere)
+    for x in (5.0, -5.0, 5.0):
+        sphere.origin = Vector3D(x, 0.0, -5.0)
+        # straight at the centre, sqrt(50) away: the surface is one radius nearer
+        towards = ray((0, 0, 0), (x, 0.0, -5.0))
+        assert scene.closest_hit(towards).hit_distance == pytest.approx(math.sqrt(50) - 1)
+        assert scene.any_hit(towards) is True
+
+
+def test_a_shape_attribute_lives_in_the_underscore_slot_and_rederives_its_owner():
+    # What Sphere.radius, Camera.width and the like are made of: the constructor fills
+    # _radius, reading radius gives it back, assigning it works the constants out again.
+    class Disc:
+        radius = PyRT_Core._Shape()
+
+        def __init__(self, radius):
+            self._radius = radius
+            self._derive()
+
+        def _derive(self):
+            self.area = math.pi * self._radius ** 2
+
+    disc = Disc(1.0)
+    assert (disc.radius, disc.area) == (1.0, math.pi)
+    disc.radius = 2.0
+    assert (disc.radius, disc._radius, disc.area) == (2.0, 2.0, 4 * math.pi)
+    assert isinstance(Disc.radius, PyRT_Core._Shape)
+
+
+def test_set_environment_map_loads_the_map_of_the_scene(tmp_path):
+    # a 2 x 1 map: left half RGB (1, 2, 4), right half (8, 16, 0.5); straight ahead (u = 0.5)
+    # reads the texel under floor(0.5 * (2 - 1)) = 0, the left one
+    path = tmp_path / "sky.hdr"
+    image_rgb = np.array([[[1.0, 2.0, 4.0], [8.0, 16.0, 0.5]]], np.float32)
+    assert cv2.imwrite(str(path), image_rgb[:, :, ::-1])
+    scene = Scene()
+    scene.set_environment_map(str(path))
+    assert isinstance(scene.env_map, PyRT_Core.EnvironmentMap)
+    assert scene.env_map.image.shape == (1, 2, 3)
+    assert rgb(scene.env_map.getValue(Vector3D(0.0, 0.0, -1.0))) == (1.0, 2.0, 4.0)
+    assert rgb(scene.env_map.getValue(Vector3D(0.0, 0.0, 1.0))) == (8.0, 16.0, 0.5)
+
+
+def test_set_pixel_before_set_camera_says_to_set_the_camera_first():
+    with pytest.raises(RuntimeError, match=r"^Scene\.set_pixel: the scene has no image yet; "
+                                           r"call scene\.set_camera\(camera\) first$"):
+        Scene().set_pixel(RGBColor(1.0, 1.0, 1.0), 0, 0)
 
 
 def test_set_pixel_writes_row_y_column_x():
@@ -609,6 +756,23 @@ def test_student_shadow_rays_from_a_hit_point_see_the_same_lights():
     hit = floor_hit(scene)
     assert [scene.any_hit(student_shadow_ray(hit, light)) for light in scene.pointLights] == [
         False, True]
+
+
+def test_visible_lights_of_a_hit_made_by_intersect_tests_every_object():
+    # A hit of the floor's own intersect() has no index in object_list (-1): the wall,
+    # which closest_hit's hits know to test, still hides the left light.
+    scene = floor_and_wall()
+    hit = scene.object_list[0].intersect(ray((0.5, 3.0, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (-1, (0.5, 0.0, 0.0))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[:1]
+
+
+def test_visible_lights_sees_an_object_added_after_the_hit():
+    # A ball added on the way from (0.5, 0, 0) to the right light (0.5 + 0.5 s, s, 0)
+    scene = floor_and_wall()
+    hit = floor_hit(scene)
+    scene.add_object(Sphere(Vector3D(0.75, 0.5, 0.0), 0.2))
+    assert scene.visible_lights(hit) == []
 
 
 def test_a_light_moved_in_place_is_seen_from_its_new_position():
@@ -734,6 +898,272 @@ def test_rays_that_leave_objects_out_see_what_testing_all_would(copies, rays):
                 student_shadow_ray(hits[1], theirs))
 
 
+def cube_around_a_tile():
+    """A floor tile y = 0 (x, z in [-0.25, 0.25]) in a closed cube of six 2 x 2 walls at
+    x, y, z = -1 and 1, with lights on each axis: at +-2, outside the cube, and at +-0.5,
+    inside it. The hit returned is the tile's at the origin, seen from above."""
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(-0.25, 0.0, 0.25), Vector3D(0.5, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -0.5)))
+    for axis in range(3):
+        for side in (-1.0, 1.0):
+            corner, s1, s2 = [-1.0] * 3, [0.0] * 3, [0.0] * 3
+            corner[axis] = side
+            s1[(axis + 1) % 3] = s2[(axis + 2) % 3] = 2.0
+            scene.add_object(Parallelogram(Vector3D(*corner), Vector3D(*s1), Vector3D(*s2)))
+    for axis in range(3):
+        for position in (2.0, -2.0, 0.5, -0.5):
+            xyz = [0.0] * 3
+            xyz[axis] = position
+            scene.add_point_light_sources(PointLight(Vector3D(*xyz), WHITE_LIGHT))
+    return scene
+
+
+def tile_hit(scene):
+    hit = scene.closest_hit(ray((0.0, 0.5, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (0.0, 0.0, 0.0))
+    return hit
+
+
+def hits_anything(scene, r):
+    """any_hit as testing every object gives it."""
+    return any(obj.intersect(r).has_hit for obj in scene.object_list)
+
+
+def to_point(hit, target, **limits):
+    """The ray from the hit point to target, stopping there, as students write them."""
+    r = student_shadow_ray(hit, PointLight(Vector3D(*target), WHITE_LIGHT))
+    for name, value in limits.items():
+        setattr(r, name, value)
+    return r
+
+
+def test_shadow_rays_from_a_hit_point_to_every_light_find_the_walls_in_between():
+    # The lights outside the cube are hidden by a wall, those inside it are not (the one
+    # below the tile is not hidden by the tile: the ray leaves it).
+    scene = cube_around_a_tile()
+    hit = tile_hit(scene)
+    expected = [True, True, False, False] * 3
+    for _ in range(2):  # twice, the second time with the lights in reverse order
+        rays = [student_shadow_ray(hit, light) for light in scene.pointLights]
+        assert [scene.any_hit(r) for r in rays] == [hits_anything(scene, r) for r in rays]
+        assert [scene.any_hit(r) for r in rays] == expected
+        scene.pointLights.reverse()
+        expected.reverse()
+        hit = tile_hit(scene)
+
+
+@pytest.mark.parametrize("target, expected", [
+    ((0.0, 3.0, 0.0), True), ((0.0, -3.0, 0.0), True), ((0.3, 0.3, 0.3), False),
+    ((0.0, 1.0 - 1e-6, 0.0), False), ((2.5, 0.0, 0.0), True),
+])
+def test_rays_from_a_hit_point_to_points_that_are_no_lights_see_what_is_there(target, expected):
+    scene = cube_around_a_tile()
+    r = to_point(tile_hit(scene), target)
+    assert scene.any_hit(r) is hits_anything(scene, r) is expected
+
+
+@pytest.mark.parametrize("axis", range(3))
+def test_rays_from_a_hit_point_moved_in_place_see_what_is_there_now(axis):
+    # Moved out of the cube, 3 along an axis, the point sees the light inside the cube on
+    # that axis through the wall.
+    scene = cube_around_a_tile()
+    hit = tile_hit(scene)
+    light = [0.0] * 3
+    light[axis] = 0.5
+    setattr(hit.hit_point, "xyz"[axis], 3.0)
+    r = to_point(hit, light)
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+def test_rays_from_a_hit_point_that_start_on_its_surface_see_that_surface():
+    # With t_min = 0 the ray from the tile to the light above it meets the tile at t = 0.
+    scene = cube_around_a_tile()
+    r = to_point(tile_hit(scene), (0.0, 0.5, 0.0), t_min=0.0)
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+def test_rays_from_a_hit_point_far_away_that_skip_less_than_its_rounding_see_its_surface():
+    # A million from the origin the hit point lies off its tilted tile by rounding, some
+    # 1e-10. A ray from it with t_min = 1e-12 towards the light above the tile can meet the
+    # tile right away; this one does, as testing every object finds.
+    scene = Scene()
+    tile = Parallelogram(Vector3D(1e6, 1e6, -1e6), Vector3D(300.0, 100.0, 0.0),
+                         Vector3D(0.0, 100.0, -300.0))
+    scene.add_object(tile)
+    n = tile.normal
+    light = PointLight(Vector3D(1e6 + 150.0, 1e6 + 100.0, -1e6 - 150.0) + n * 500.0,
+                       WHITE_LIGHT)
+    scene.add_point_light_sources(light)
+    eye = Vector3D(1000236.4162440295, 1000172.0820249226, -1000114.3091659487)
+    seen = Vector3D(1000250.7295311759, 1000126.8532171826, -1000129.8301203715)
+    hit = scene.closest_hit(Ray(eye, Normalize(seen - eye)))
+    assert hit.has_hit
+    r = to_point(hit, as_tuple(light.pos), t_min=1e-12)
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+def test_rays_from_a_hit_point_in_a_tiny_scene_to_just_past_a_light_see_what_is_there():
+    # A scene 1e-4 across: a tile at the origin, a light 1e-4 along x and a wall 1e-7
+    # beyond the light. The ray to the point 1e-6 beyond the light crosses the wall.
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(-2.5e-5, 0.0, 2.5e-5), Vector3D(5e-5, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -5e-5)))
+    scene.add_object(Parallelogram(Vector3D(1e-4 + 1e-7, -1e-4, -1e-4),
+                                   Vector3D(0.0, 2e-4, 0.0), Vector3D(0.0, 0.0, 2e-4)))
+    scene.add_point_light_sources(PointLight(Vector3D(1e-4, 0.0, 0.0), WHITE_LIGHT))
+    hit = scene.closest_hit(ray((0.0, 1e-5, 0.0), (0.0, -1.0, 0.0), t_min=1e-9))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (0.0, 0.0, 0.0))
+    r = to_point(hit, (1e-4 + 1e-6, 0.0, 0.0), t_min=1e-9)
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+def test_rays_from_a_hit_point_see_an_object_added_after_the_hit():
+    scene = cube_around_a_tile()
+    hit = tile_hit(scene)
+    scene.add_object(Parallelogram(Vector3D(-0.1, 0.25, 0.1), Vector3D(0.2, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -0.2)))
+    r = to_point(hit, (0.0, 0.5, 0.0))
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+AXES = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)]
+
+
+def along(*pairs):
+    """The vector sum of factor * AXES[a] over the (factor, a) pairs, as a tuple."""
+    v = [0.0] * 3
+    for factor, a in pairs:
+        v[a] += factor
+    return tuple(v)
+
+
+@pytest.mark.parametrize("far, normal, point, eye", [
+    (0, 1, 1000.0, 1.0), (1, 2, 1000.0, 1.0), (2, 0, 1000.0, 1.0), (0, 1, 0.0, 1000.0),
+], ids=["x", "y", "z", "distance"])
+def test_a_light_nearer_to_the_surface_than_the_lift_of_shadow_rays_lights_nothing(
+        far, normal, point, eye):
+    # The point P, `point` along one axis, on the plane through the origin normal to
+    # another, seen from `eye` away: shadow rays start lift = 2^-32 (1000 + 1) = 2.3e-7 (or
+    # 2^-32 1000) above it. A light 1e-7 above P, or exactly the lift above it, lies on the
+    # surface to within that; one 1e-6 above it lights it.
+    lift = (point + eye) * 2.0 ** -32
+    scene = Scene()
+    scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(*AXES[normal])))
+    for height in (1e-7, lift, 1e-6):
+        scene.add_point_light_sources(PointLight(
+            Vector3D(*along((point, far), (height, normal))), WHITE_LIGHT))
+    hit = scene.closest_hit(ray(along((point, far), (eye, normal)), along((-1.0, normal))))
+    assert as_tuple(hit.hit_point) == along((point, far))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[2:]
+
+
+def test_a_lamp_on_the_ceiling_lights_the_floor_below_it_far_from_the_origin():
+    # Floor y = 0 and ceiling y = 0.1, 1000 from the origin; the lamp lies on the ceiling,
+    # 0.1 above the point seen. The shadow ray stops short of the lamp, so the ceiling the
+    # lamp lies on does not hide it, although the ray starts 2.3e-7 above the floor, more
+    # than 1e-6 of the way to the lamp.
+    scene = Scene()
+    scene.add_object(InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0)))
+    scene.add_object(InfinitePlane(Vector3D(0.0, 0.1, 0.0), Vector3D(0.0, -1.0, 0.0)))
+    scene.add_point_light_sources(PointLight(Vector3D(1000.0, 0.1, 0.0), WHITE_LIGHT))
+    hit = scene.closest_hit(ray((1000.0, 0.05, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (1000.0, 0.0, 0.0))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights
+
+
+@pytest.mark.parametrize("axis", range(3), ids=["x", "y", "z"])
+def test_a_ball_between_a_surface_and_a_light_shades_it_whichever_way_the_surface_faces(axis):
+    # In the plane of `axis` (a) and the next one (b): the wall a = -2 faces +a, seen at
+    # P = (-2, 2) from (-1, 2). A ball of radius 0.5 at (-1, 1), halfway from P to the light
+    # at the origin, hides that light; the ray to the light at (0, 4) passes its centre at
+    # sqrt(2).
+    b = (axis + 1) % 3
+    scene = Scene()
+    scene.add_object(InfinitePlane(Vector3D(*along((-2.0, axis))), Vector3D(*AXES[axis])))
+    scene.add_object(Sphere(Vector3D(*along((-1.0, axis), (1.0, b))), 0.5))
+    for position in ((0.0, 0.0, 0.0), along((4.0, b))):
+        scene.add_point_light_sources(PointLight(Vector3D(*position), WHITE_LIGHT))
+    hit = scene.closest_hit(ray(along((-1.0, axis), (2.0, b)), along((-1.0, axis))))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, along((-2.0, axis), (2.0, b)))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[1:]
+    assert [scene.any_hit(student_shadow_ray(hit, light)) for light in scene.pointLights] == [
+        True, False]
+
+
+class StudentFloor(Primitive):
+    """A primitive of a student's own, with only intersect(): the plane y = height, normal
+    (0, 1, 0), hit between the ray's t_min and t_max."""
+
+    def __init__(self, height):
+        super().__init__()
+        self.height = height
+        self.rays = []
+
+    def intersect(self, r):
+        self.rays.append(r)
+        if r.d.y == 0.0:
+            return HitData()
+        t = (self.height - r.o.y) / r.d.y
+        if not r.t_min <= t <= r.t_max:
+            return HitData()
+        return HitData(True, r.get_hitpoint(t), Vector3D(0.0, 1.0, 0.0), t)
+
+
+def test_a_primitive_of_ones_own_is_hit_through_its_intersect():
+    # From (1, 2, 3) along (2, -2, 1)/3 the plane y = -1 is (-1 - 2)/(-2/3) = 4.5 away, at
+    # (1 + 3, 2 - 3, 3 + 1.5).
+    floor = StudentFloor(-1.0)
+    scene = Scene()
+    scene.add_object(Sphere(Vector3D(0.0, 10.0, 0.0), 1.0))
+    scene.add_object(floor)
+    d = (2 / 3, -2 / 3, 1 / 3)
+    hit = scene.closest_hit(ray((1, 2, 3), d))
+    assert_hit(hit, (4.0, -1.0, 4.5), (0.0, 1.0, 0.0), 4.5)
+    assert hit.primitive_index == 1
+    seen = floor.rays[-1]
+    assert (type(seen), as_tuple(seen.o), as_tuple(seen.d), seen.t_min, seen.t_max) == (
+        Ray, (1.0, 2.0, 3.0), d, EPSILON, HUGEVALUE)
+    assert scene.closest_hit(ray((1, 2, 3), d, t_min=5.0)).has_hit is False
+    assert scene.closest_hit(ray((1, 2, 3), d, t_max=4.0)).has_hit is False
+    assert scene.any_hit(ray((1, 2, 3), d, t_max=4.0)) is False
+    assert scene.any_hit(ray((1, 2, 3), d, t_max=5.0)) is True
+    assert scene.any_hit(ray((1, 2, 3), (0, 1, 0), t_max=5.0)) is False
+
+
+def test_a_primitive_of_ones_own_casts_shadows():
+    # A floor tile seen at the origin, under a student's plane y = 1: it hides the light
+    # above it, not the one below it.
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(-1.0, 0.0, 1.0), Vector3D(2.0, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -2.0)))
+    scene.add_object(StudentFloor(1.0))
+    for height in (2.0, 0.5):
+        scene.add_point_light_sources(PointLight(Vector3D(0.0, height, 0.0), WHITE_LIGHT))
+    hit = scene.closest_hit(ray((0.0, 0.75, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (0.0, 0.0, 0.0))
+    assert [light for light, _, _ in scene.visible_lights(hit)] == scene.pointLights[1:]
+    assert [scene.any_hit(student_shadow_ray(hit, light)) for light in scene.pointLights] == [
+        True, False]
+
+
+def test_a_scene_sent_to_a_worker_process_arrives_whole():
+    # Worker processes get the scene pickled: it must answer every query as the original.
+    import pickle
+    scene = floor_and_wall()
+    scene.set_ambient(RGBColor(0.1, 0.2, 0.3))
+    scene.object_list[0].set_BRDF(Lambertian(RGBColor(0.5, 0.25, 1.0)))
+    scene.set_camera(Camera(4, 3, 60))
+    copy = pickle.loads(pickle.dumps(scene))
+    assert (rgb(copy.i_a), copy.camera.width, copy.camera.height) == ((0.1, 0.2, 0.3), 4, 3)
+    assert copy.camera.get_direction(1, 2) == scene.camera.get_direction(1, 2)
+    assert [as_tuple(light.pos) for light in copy.pointLights] == [as_tuple(RIGHT),
+                                                                   as_tuple(LEFT)]
+    assert rgb(copy.object_list[0].get_BRDF().kd) == rgb(scene.object_list[0].BRDF.kd)
+    hit = floor_hit(copy)
+    assert [copy.pointLights.index(light) for light, _, _ in copy.visible_lights(hit)] == [0]
+
+
 # ------------------------------------------------------------------------------------------
 # Saving images
 # ------------------------------------------------------------------------------------------
@@ -789,6 +1219,22 @@ def test_saved_png_is_the_tonemapped_image(saved):
     assert png.shape[:2] == image.shape[:2]
     expected = PyRT_Core.tonemap_image(image)
     np.testing.assert_allclose(png[:, :, :3], expected, atol=1.01 / 255)
+
+
+def test_save_image_before_set_camera_says_to_set_the_camera_and_render(tmp_path):
+    with pytest.raises(RuntimeError, match=r"^Scene\.save_image: the scene has no image yet; "
+                                           r"call scene\.set_camera\(camera\) and render "
+                                           r"first$"):
+        Scene().save_image(str(tmp_path / "image"))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_save_image_says_when_opencv_cannot_encode_the_hdr_file(tmp_path, monkeypatch):
+    monkeypatch.setattr(PyRT_Core.cv2, "imencode", lambda *args: (False, None))
+    with pytest.raises(RuntimeError, match=r"^Scene\.save_image: OpenCV could not encode the "
+                                           r"HDR image$"):
+        scene_with_image(sample_image()).save_image(str(tmp_path / "image"))
+    assert not (tmp_path / "image.hdr").exists()
 
 
 def test_save_image_overwrites_previous_files(tmp_path):

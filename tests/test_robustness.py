@@ -202,6 +202,17 @@ def test_closest_hit_equals_brute_force_minimum(object_list, origin, direction):
     assert as_tuple(own.normal) == pytest.approx(as_tuple(closest.normal), abs=1e-9)
 
 
+def test_a_sphere_smaller_than_the_rounding_of_its_position_faces_the_ray():
+    # 3e17 away, neighbouring coordinates are 16 to 32 apart: the unit sphere is a single
+    # point there, and its normal at the hit is the one facing the ray, -d = -(1, 2, -2)/3.
+    sphere = Sphere(Vector3D(1e17, 2e17, -2e17), 1.0)
+    hit = sphere.intersect(Ray(Vector3D(0.0, 0.0, 0.0), Vector3D(1.0, 2.0, -2.0), 1e18))
+    assert hit.has_hit
+    assert as_tuple(hit.normal) == pytest.approx((-1 / 3, -2 / 3, 2 / 3), abs=1e-15)
+    assert as_tuple(hit.hit_point) == pytest.approx((1e17, 2e17, -2e17), rel=1e-15)
+    assert hit.hit_distance == pytest.approx(3e17, rel=1e-15)
+
+
 # ------------------------------------------------------------------------------------------
 # Property-based: the length of the direction vector does not matter
 # ------------------------------------------------------------------------------------------
@@ -707,36 +718,36 @@ PIXEL_COUNTS = [(0, ValueError), (-1, ValueError), (2.5, ValueError), (True, Typ
 
 @pytest.mark.parametrize("width, exception", PIXEL_COUNTS)
 def test_camera_width_must_be_a_positive_integer(width, exception):
-    with pytest.raises(exception, match="width"):
+    with pytest.raises(exception, match="^Camera: width must be a "):
         Camera(width, 10, 60)
 
 
 @pytest.mark.parametrize("height, exception", PIXEL_COUNTS)
 def test_camera_height_must_be_a_positive_integer(height, exception):
-    with pytest.raises(exception, match="height"):
+    with pytest.raises(exception, match="^Camera: height must be a "):
         Camera(10, height, 60)
 
 
 @pytest.mark.parametrize("fov", [0, 180, -5, 200, NAN, INF])
 def test_camera_fov_must_lie_strictly_between_0_and_180(fov):
-    with pytest.raises(ValueError, match="vertical_fov"):
+    with pytest.raises(ValueError, match="^Camera: vertical_fov_ "):
         Camera(10, 10, fov)
 
 
 @pytest.mark.parametrize("fov", ["60", True, None])
 def test_camera_fov_must_be_a_number(fov):
-    with pytest.raises(TypeError, match="vertical_fov"):
+    with pytest.raises(TypeError, match="^Camera: vertical_fov_ must be a number, got "):
         Camera(10, 10, fov)
 
 
 @pytest.mark.parametrize("radius", [0, -1, INF, NAN])
 def test_sphere_radius_must_be_positive_and_finite(radius):
-    with pytest.raises(ValueError, match="sphere_radius"):
+    with pytest.raises(ValueError, match="^Sphere: sphere_radius must be positive and finite"):
         Sphere(GOOD, radius)
 
 
 def test_sphere_radius_must_be_a_number():
-    with pytest.raises(TypeError, match="sphere_radius"):
+    with pytest.raises(TypeError, match="^Sphere: sphere_radius must be a number, got "):
         Sphere(GOOD, "2")
 
 
@@ -745,30 +756,30 @@ BAD_VECTORS = [Vector3D(NAN, 0.0, 0.0), Vector3D(0.0, INF, 0.0), Vector3D(0.0, 0
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_sphere_origin_must_be_finite(bad):
-    with pytest.raises(ValueError, match="sphere_origin"):
+    with pytest.raises(ValueError, match="^Sphere: sphere_origin must have finite components"):
         Sphere(bad, 1.0)
 
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_point_light_position_must_be_finite(bad):
-    with pytest.raises(ValueError, match="pos_"):
+    with pytest.raises(ValueError, match="^PointLight: pos_ must have finite components"):
         PointLight(bad, RGBColor(1.0, 1.0, 1.0))
 
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_parallelogram_point_must_be_finite(bad):
-    with pytest.raises(ValueError, match="point"):
+    with pytest.raises(ValueError, match="^Parallelogram: point must have finite components"):
         Parallelogram(bad, Vector3D(1.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0))
 
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_plane_origin_must_be_finite(bad):
-    with pytest.raises(ValueError, match="plane_origin"):
+    with pytest.raises(ValueError, match="^InfinitePlane: plane_origin must have finite "):
         InfinitePlane(bad, Vector3D(0.0, 1.0, 0.0))
 
 
 def test_sphere_origin_must_be_a_vector():
-    with pytest.raises(TypeError, match="sphere_origin"):
+    with pytest.raises(TypeError, match="^Sphere: sphere_origin must be a Vector3D, got "):
         Sphere((0.0, 0.0, -5.0), 1.0)
 
 
@@ -776,7 +787,7 @@ def test_sphere_origin_must_be_a_vector():
 def test_parallelogram_sides_must_be_non_zero(name):
     sides = {"s1": Vector3D(1.0, 0.0, 0.0), "s2": Vector3D(0.0, 1.0, 0.0)}
     sides[name] = Vector3D(0.0, 0.0, 0.0)
-    with pytest.raises(ValueError, match=name):
+    with pytest.raises(ValueError, match=f"^Parallelogram: {name} must not be the zero vector"):
         Parallelogram(GOOD, sides["s1"], sides["s2"])
 
 
@@ -789,10 +800,42 @@ def test_parallelogram_sides_must_not_be_parallel(s2):
     with pytest.raises(ValueError, match="parallel") as error:
         Parallelogram(GOOD, Vector3D(1.0, 2.0, 3.0), s2)
     assert "s1" in str(error.value) and "s2" in str(error.value)
+    assert str(error.value).startswith("Parallelogram: s1 ")
+    assert str(error.value).endswith(", so they span no area; give two sides that point in "
+                                     "different directions")
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: Scene().set_ambient((0.1, 0.2, 0.3)), "^Scene\\.set_ambient: i_a must be a RGBColor"),
+    (lambda: Sphere(GOOD, 1.0, emission=(1.0, 1.0, 1.0)), "^Sphere: emission must be a RGBColor"),
+    (lambda: PointLight(GOOD, 80.0), "^PointLight: intensity_ must be a RGBColor"),
+], ids=["ambient", "emission", "intensity"])
+def test_colours_that_are_not_rgb_colours_are_refused_naming_the_argument(make, message):
+    with pytest.raises(TypeError, match=message):
+        make()
+
+
+def test_set_camera_needs_a_camera():
+    with pytest.raises(TypeError, match=r"^Scene\.set_camera: camera must be a Camera, got "):
+        Scene().set_camera((500, 500, 60))
+
+
+def test_set_brdf_needs_a_brdf_and_names_the_class():
+    with pytest.raises(TypeError, match=r"^Sphere\.set_BRDF: brdf must be a BRDF such as "
+                                        r"Lambertian\(RGBColor\(\.\.\.\)\), got "):
+        Sphere(GOOD, 1.0).set_BRDF(RGBColor(0.5, 0.5, 0.5))
+
+
+@pytest.mark.parametrize("direction", [Vector3D(0.0, 0.0, 0.0), Vector3D(NAN, 0.0, 1.0),
+                                       Vector3D(INF, 0.0, 0.0)], ids=["zero", "nan", "infinite"])
+def test_a_ray_with_no_direction_is_refused_with_what_to_do(direction):
+    with pytest.raises(ValueError, match=r"^the ray direction must be a non-zero finite vector, "
+                                         r"got .*; set ray\.d before tracing the ray$"):
+        Sphere(GOOD, 1.0).intersect(Ray(Vector3D(0.0, 0.0, 0.0), direction))
 
 
 def test_plane_normal_must_be_non_zero():
-    with pytest.raises(ValueError, match="plane_normal"):
+    with pytest.raises(ValueError, match="^InfinitePlane: plane_normal must not be the zero "):
         InfinitePlane(GOOD, Vector3D(0.0, 0.0, 0.0))
 
 
@@ -819,14 +862,15 @@ def test_depth_integrator_max_depth_must_be_positive(max_depth):
 
 @pytest.mark.parametrize("colour", [(0.5, 0.5, 0.5), Vector3D(0.5, 0.5, 0.5), 0.5, None])
 def test_lambertian_needs_an_rgb_colour(colour):
-    with pytest.raises(TypeError, match="diffuse_colour"):
+    with pytest.raises(TypeError, match="^Lambertian: diffuse_colour must be a RGBColor, got "):
         Lambertian(colour)
 
 
 @pytest.mark.parametrize("obj", [Lambertian(BLACK), Vector3D(0.0, 0.0, 0.0), "sphere", None])
 def test_add_object_needs_a_primitive(obj):
     scene = Scene()
-    with pytest.raises(TypeError, match="obj"):
+    with pytest.raises(TypeError, match=r"^Scene\.add_object: obj must be a Primitive \(Sphere, "
+                       r"InfinitePlane, Parallelogram or your own subclass\), got "):
         scene.add_object(obj)
     assert scene.object_list == []
 
