@@ -38,7 +38,7 @@ TWO_PI = 2.0 * pi
 INVERTED_PI = 1.0 / pi
 
 _new = object.__new__  # see the speed note above
-_SCALAR_HINT = ("multiply a {cls} by a number only; for the element-wise product of two "
+_SCALAR_HINT = ("{verb} a {cls} by a number only; for the element-wise product of two "
                 "{cls} objects use a.multiply(b)")
 
 
@@ -96,7 +96,7 @@ class Vector3D:
 
     def __mul__(self, s):
         if s.__class__ in _NOT_SCALARS:
-            raise TypeError(_SCALAR_HINT.format(cls="Vector3D"))
+            raise TypeError(_SCALAR_HINT.format(verb="multiply", cls="Vector3D"))
         v = _new(Vector3D)
         v.x, v.y, v.z = self.x * s, self.y * s, self.z * s
         return v
@@ -105,7 +105,7 @@ class Vector3D:
 
     def __truediv__(self, s):
         if s.__class__ in _NOT_SCALARS:
-            raise TypeError(_SCALAR_HINT.format(cls="Vector3D"))
+            raise TypeError(_SCALAR_HINT.format(verb="divide", cls="Vector3D"))
         v = _new(Vector3D)
         v.x, v.y, v.z = self.x / s, self.y / s, self.z / s
         return v
@@ -196,7 +196,7 @@ class RGBColor:
 
     def __mul__(self, s):
         if s.__class__ in _NOT_SCALARS:
-            raise TypeError(_SCALAR_HINT.format(cls="RGBColor"))
+            raise TypeError(_SCALAR_HINT.format(verb="multiply", cls="RGBColor"))
         c = _new(RGBColor)
         c.r, c.g, c.b = self.r * s, self.g * s, self.b * s
         return c
@@ -205,7 +205,7 @@ class RGBColor:
 
     def __truediv__(self, s):
         if s.__class__ in _NOT_SCALARS:
-            raise TypeError(_SCALAR_HINT.format(cls="RGBColor"))
+            raise TypeError(_SCALAR_HINT.format(verb="divide", cls="RGBColor"))
         c = _new(RGBColor)
         c.r, c.g, c.b = self.r / s, self.g / s, self.b / s
         return c
