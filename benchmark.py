@@ -34,10 +34,9 @@ a temporary folder that is deleted at the end:
                                               # a quick check, about 10 seconds
     python benchmark.py --help                # all options
 
-How long it takes: with the defaults, 5 to 7 minutes on a machine with 2 cores (about
-1.7 minutes for part 1 and 3 to 5 minutes for part 2, depending on the machine's load). Part 1 grows with the square of --size,
-part 2 with the square of --accuracy-size and with --reference-samples, both with
---repeats.
+How long it takes: with the defaults, about 9 minutes on a machine with 2 cores (about 3
+minutes for part 1 and 6 for part 2). Part 1 grows with the square of --size, part 2 with
+the square of --accuracy-size and with --reference-samples, both with --repeats.
 """
 import argparse
 import contextlib
@@ -264,9 +263,14 @@ def time_renders(make: Callable[[], Integrator], worker_counts: list, repeats: i
 
 
 def time_turns(tasks: list, repeats: int) -> list:
-    """For each task, the median time in seconds of `repeats` runs. A task is a function
-    that prepares a run (not timed) and returns it; the tasks take turns, so that a slow
-    spell of the machine slows them alike instead of one of them."""
+    """For each task, the median time in seconds of `repeats` runs (see timed_turns)."""
+    return [statistics.median(times) for times in timed_turns(tasks, repeats)]
+
+
+def timed_turns(tasks: list, repeats: int) -> list:
+    """For each task, the times in seconds of `repeats` runs. A task is a function that
+    prepares a run (not timed) and returns it; the tasks take turns, so that a slow spell
+    of the machine slows them alike instead of one of them."""
     times = [[] for _ in tasks]
     for _ in range(repeats):
         for task, counted in zip(tasks, times):
@@ -274,7 +278,14 @@ def time_turns(tasks: list, repeats: int) -> list:
             start = time.perf_counter()
             run()
             counted.append(time.perf_counter() - start)
-    return [statistics.median(counted) for counted in times]
+    return times
+
+
+def paired_ratio(times_a: list, times_b: list) -> float:
+    """The median of the ratios a/b of runs made in the same turn: a slow spell of the
+    machine that lasts a turn changes both times of its ratio alike, where it would move
+    one of two medians."""
+    return statistics.median(a / b for a, b in zip(times_a, times_b))
 
 
 def prepared(name: str, figure: str, scene: str, max_depth, size: int,
@@ -364,11 +375,13 @@ def speed_table(size: int, repeats: int, workers: int, folder: Path) -> str:
         if phong:
             check_flat_loop(integrator)
             tasks.append(lambda: partial(flat_phong, SCENES[scene](size, size)))
-        one, many, *flat = time_turns(tasks, repeats)
+        times = timed_turns(tasks, repeats)
+        one, many, *flat = [statistics.median(counted) for counted in times]
         rows.append([figure_label(figure), label(integrator), SCENE_NAMES[scene],
                      f"{flat[0] / pixels * 1e6:.2f}" if phong else "",
-                     f"{one / pixels * 1e6:.2f}", f"{one / flat[0]:.2f}" if phong else "",
-                     f"{many / pixels * 1e6:.2f}", f"{one / many:.2f}"])
+                     f"{one / pixels * 1e6:.2f}",
+                     f"{paired_ratio(times[0], times[2]):.2f}" if phong else "",
+                     f"{many / pixels * 1e6:.2f}", f"{paired_ratio(times[0], times[1]):.2f}"])
     header = ["Image", "Integrator", "Scene", "Flat loop (µs/pixel)", "1 process (µs/pixel)",
               "1 process / flat loop", f"{workers} processes (µs/pixel)", "Speed-up"]
     notes = (f"{size}x{size} pixels, one ray through each pixel centre; each time is the "
@@ -379,7 +392,9 @@ def speed_table(size: int, repeats: int, workers: int, folder: Path) -> str:
              "with PyRT's Vector3D and RGBColor operations only. The flat loop is flat_phong "
              "of benchmark.py: the same Phong image, bit for bit, from one loop with no "
              "objects per pixel and no method calls, testing every object for every ray; "
-             "'1 process / flat loop' is the framework's time as a multiple of it.")
+             "'1 process / flat loop' is the framework's time as a multiple of it. The "
+             "ratios (that one and the speed-up) are medians of the ratios of the times "
+             "of each turn, not ratios of the medians.")
     return markdown_table(header, rows, 3) + "\n\n" + notes
 
 

@@ -6,7 +6,8 @@ import pytest
 import numpy as np
 
 from AppRenderer import cornell_box_scene, sphere_test_scene
-from benchmark import Point, equal_time_error, flat_phong, target_checks, time_renders
+from benchmark import (Point, equal_time_error, flat_phong, paired_ratio, target_checks,
+                       time_renders)
 from helpers import REPO, render_image, run_python
 from PyRT_Integrators import PhongIntegrator
 
@@ -65,6 +66,12 @@ def test_median_of_an_even_number_of_renders_is_the_mean_of_the_middle_two(clock
     # 4, 1, 8 and 2 seconds: the middle two are 2 and 4
     integrator = TimedIntegrator(clock, [4.0, 1.0, 8.0, 2.0])
     assert time_renders(lambda: integrator, [1], repeats=4) == [3.0]
+
+
+def test_ratios_are_medians_of_the_ratios_within_each_turn():
+    # Turn by turn, a takes 2, 9 and 3 seconds while b takes 1, 3 and 3: the ratios of the
+    # turns are 2, 3 and 1 (median 2), where the ratio of the medians would be 3/3 = 1.
+    assert paired_ratio([2.0, 9.0, 3.0], [1.0, 3.0, 3.0]) == 2.0
 
 
 def test_every_render_gets_an_integrator_of_its_own():
