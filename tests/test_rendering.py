@@ -1328,6 +1328,22 @@ def test_compute_color_returning_a_colour_with_a_non_number_channel_names_the_pi
                                 + MUST_RETURN)
 
 
+class BadChannelAtLastPixel(Integrator):
+    """Returns a colour with a vector for its green channel at pixel (2, 1), the last of
+    its row, and BLACK elsewhere."""
+
+    def compute_color(self, ray):
+        bad = RGBColor(0.5, Vector3D(0.0, 1.0, 0.0), 0.5)
+        return bad if pixel_of(ray, self.scene.camera) == (2, 1) else BLACK
+
+
+def test_a_colour_with_a_non_number_channel_at_the_end_of_a_row_is_found_there(tmp_path):
+    integrator = BadChannelAtLastPixel(str(tmp_path / "img"))
+    integrator.add_scene(fov90_scene(3, 3))
+    with pytest.raises(TypeError, match=r"for pixel \(2, 1\);"):
+        integrator.render(workers=1, progress=False)
+
+
 class LeavesOutTheLastNumberOfRow2(PixelGrey):
     """Makes its rows itself, and row 2 lacks the blue channel of its last pixel."""
 
