@@ -1295,37 +1295,19 @@ MUST_RETURN = ("; it must return an RGBColor, such as RGBColor(r, g, b) or BLACK
 
 
 @pytest.mark.parametrize("samples", [1, 4])
-def test_compute_color_returning_none_asks_whether_a_return_statement_is_missing(tmp_path,
-                                                                                samples):
-    integrator = ReturnsAtCentre(str(tmp_path / "img"), None)
+@pytest.mark.parametrize("value, shown", [
+    (None, "None for pixel (1, 1) (is a return statement missing?)"),
+    ((0.1, 0.2, 0.3), "(0.1, 0.2, 0.3) for pixel (1, 1)"),
+    (RGBColor(0.5, Vector3D(0.0, 1.0, 0.0), 0.5),
+     "RGBColor(0.5, Vector3D(0.0, 1.0, 0.0), 0.5) for pixel (1, 1)"),
+], ids=["None", "tuple", "non-number channel"])
+def test_compute_color_returning_a_non_colour_says_what_it_returned_and_must_return(
+        tmp_path, value, shown, samples):
+    integrator = ReturnsAtCentre(str(tmp_path / "img"), value)
     integrator.add_scene(fov90_scene(3, 3))
     with pytest.raises(TypeError) as error:
         integrator.render(workers=1, progress=False, samples_per_pixel=samples)
-    assert str(error.value) == ("ReturnsAtCentre.compute_color returned None for pixel "
-                                "(1, 1) (is a return statement missing?)" + MUST_RETURN)
-
-
-@pytest.mark.parametrize("samples", [1, 4])
-def test_compute_color_returning_another_value_says_what_it_must_return(tmp_path, samples):
-    integrator = ReturnsAtCentre(str(tmp_path / "img"), (0.1, 0.2, 0.3))
-    integrator.add_scene(fov90_scene(3, 3))
-    with pytest.raises(TypeError) as error:
-        integrator.render(workers=1, progress=False, samples_per_pixel=samples)
-    assert str(error.value) == ("ReturnsAtCentre.compute_color returned (0.1, 0.2, 0.3) for "
-                                "pixel (1, 1)" + MUST_RETURN)
-
-
-@pytest.mark.parametrize("samples", [1, 4])
-def test_compute_color_returning_a_colour_with_a_non_number_channel_names_the_pixel(
-        tmp_path, samples):
-    normal = Vector3D(0.0, 1.0, 0.0)
-    integrator = ReturnsAtCentre(str(tmp_path / "img"), RGBColor(0.5, normal, 0.5))
-    integrator.add_scene(fov90_scene(3, 3))
-    with pytest.raises(TypeError) as error:
-        integrator.render(workers=1, progress=False, samples_per_pixel=samples)
-    assert str(error.value) == ("ReturnsAtCentre.compute_color returned RGBColor(0.5, "
-                                "Vector3D(0.0, 1.0, 0.0), 0.5) for pixel (1, 1)"
-                                + MUST_RETURN)
+    assert str(error.value) == "ReturnsAtCentre.compute_color returned " + shown + MUST_RETURN
 
 
 class BadChannelAtLastPixel(Integrator):
