@@ -588,7 +588,7 @@ class Primitive(ABC):
 def _hit(px, py, pz, nx, ny, nz, t):
     """HitData(True, Vector3D(px, py, pz), Vector3D(nx, ny, nz), t), built without calling
     the three __init__ methods: closest_hit makes one for nearly every pixel, and this
-    costs half as much (see the speed note of PyRT_Common)."""
+    costs about a third less (see the speed note of PyRT_Common)."""
     p, n, hit = _new(Vector3D), _new(Vector3D), _new(HitData)
     p.x, p.y, p.z = px, py, pz
     n.x, n.y, n.z = nx, ny, nz
