@@ -96,6 +96,7 @@ def pixel_of(ray, camera):
 
 
 def small_cornell_box(size):
+    """The Cornell box of Figure 1, closer (0.75) and smaller (side 2)."""
     return cornell_box_scene(0.75, 2, width=size, height=size)
 
 

@@ -11,7 +11,12 @@ scenes and integrators, and its PNG is written to tests/reference/<figure>_<inte
     figure5_phong.png         Phong on the sphere scene (Figure 5)
 
 These images are the course's expected results, and the tests compare every change with
-them. Regenerate them only when an intended change alters the course images, never to make
+them. Beside them it writes the linear image (.npy) of a small Cornell box, Phong, with
+SAMPLED_REFERENCE_SAMPLES jittered rays per pixel: what the anti-aliasing tests of
+test_rendering.py measure the error of fewer samples against, stored so that a bias of
+the sampling shows as an error that no number of samples removes.
+
+    cornell_phong_32x32_1024spp.npy Regenerate them only when an intended change alters the course images, never to make
 a failing test pass; look at every new image before committing it, and give the reason for
 the change in the commit message.
 
@@ -32,6 +37,13 @@ if str(REPO) not in sys.path:
 
 import AppRenderer  # noqa: E402  (needs the repository on the import path first)
 from PyRT_Compare import REFERENCE_DIR, REFERENCE_SIZE as SIZE  # noqa: E402
+from PyRT_Integrators import PhongIntegrator  # noqa: E402
+from helpers import small_cornell_box  # noqa: E402
+
+SAMPLED_REFERENCE_SIZE = 32
+SAMPLED_REFERENCE_SAMPLES = 1024
+SAMPLED_REFERENCE = REFERENCE_DIR / (f"cornell_phong_{SAMPLED_REFERENCE_SIZE}x"
+                                     f"{SAMPLED_REFERENCE_SIZE}_{SAMPLED_REFERENCE_SAMPLES}spp.npy")
 
 
 class Figure(NamedTuple):
@@ -63,12 +75,22 @@ def render_figure(figure, folder, size=SIZE, workers=None, progress=False):
     return Path(integrator.get_filename() + ".png")
 
 
+def render_sampled_reference(folder):
+    """The linear image of SAMPLED_REFERENCE: Phong on small_cornell_box, many samples."""
+    integrator = PhongIntegrator(str(Path(folder) / "sampled"))
+    integrator.add_scene(small_cornell_box(SAMPLED_REFERENCE_SIZE))
+    integrator.render(samples_per_pixel=SAMPLED_REFERENCE_SAMPLES)
+    return Path(integrator.get_filename() + ".npy")
+
+
 def main():
     REFERENCE_DIR.mkdir(exist_ok=True)
     with tempfile.TemporaryDirectory() as folder:
         for figure in FIGURES:
             shutil.copyfile(render_figure(figure, folder, progress=True), figure.reference)
             print(f"Wrote {figure.reference.relative_to(REPO)}")
+        shutil.copyfile(render_sampled_reference(folder), SAMPLED_REFERENCE)
+        print(f"Wrote {SAMPLED_REFERENCE.relative_to(REPO)}")
 
 
 if __name__ == "__main__":
