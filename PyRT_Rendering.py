@@ -160,15 +160,14 @@ def stratum_grid(samples):
     return a, samples // a
 
 
-def pixel_offsets(samples, y, width, xs=None, centred=False):
+def pixel_offsets(samples, y, width, xs=None):
     """For each pixel of row y (or each pixel x of xs), the (u, v) points inside it that
     are sampled.
 
     N samples form a jittered grid of a x b cells (stratum_grid): one random point in
     each cell, cell k in row k // b and column k % b, so the samples cover the pixel
     evenly. The random numbers depend only on the row, so an image is the same on every
-    run and for any number of workers. centred: the point of the cell that holds the
-    pixel's centre (centre_cell) is the centre itself, (0.5, 0.5)."""
+    run and for any number of workers."""
     a, b = stratum_grid(samples)
     jitter = np.random.default_rng((SAMPLE_SEED, y)).random((width, samples, 2))
     if xs is not None:
@@ -176,16 +175,7 @@ def pixel_offsets(samples, y, width, xs=None, centred=False):
     cell = np.arange(samples)
     u = (cell % b + jitter[:, :, 0]) / b
     v = (cell // b + jitter[:, :, 1]) / a
-    if centred:
-        u[:, centre_cell(samples)] = v[:, centre_cell(samples)] = 0.5
     return np.stack((u, v), axis=2).tolist()
-
-
-def centre_cell(samples):
-    """The cell of pixel_offsets' grid that holds the pixel's centre (on its corner when
-    the grid's sides are even): row a // 2, column b // 2."""
-    a, b = stratum_grid(samples)
-    return a // 2 * b + b // 2
 
 
 def stratum_pairs(samples):
@@ -217,30 +207,24 @@ def error_variance_weight(samples):
     return 1.0 / (sqrt(2.0) * 2 * len(stratum_pairs(samples)) * samples)
 
 
-def sampled_pixels(integrator, y, samples, xs, centres=None):
+def sampled_pixels(integrator, y, samples, xs):
     """The pixels xs of row y, each from camera rays through the points pixel_offsets gives
     it: per pixel six numbers, the average colour (r, g, b) of its samples and the
     estimated squared error of each channel of that average (error_variance_weight).
     Pixels of the row not in xs are zeros. The colours are summed in the order of the
     cells, as Integrator.render_row always has, so that an image is the same bit for bit
-    whichever way it is rendered. centres: the colours of the rays through the centres of
-    the pixels xs, traced before: each is the sample of its pixel's centre_cell."""
+    whichever way it is rendered."""
     camera = integrator.scene.camera
     compute_color = integrator.compute_color
     pairs = stratum_pairs(samples)
     weight = error_variance_weight(samples) if pairs else 0.0
-    middle = centre_cell(samples) if centres is not None else -1
     row = [0.0] * (6 * camera.width)
-    offsets_of = pixel_offsets(samples, y, camera.width, xs, centred=centres is not None)
-    for i, (x, offsets) in enumerate(zip(xs, offsets_of)):
+    for x, offsets in zip(xs, pixel_offsets(samples, y, camera.width, xs)):
         r = g = b = 0.0
         colors = []
-        for cell, (u, v) in enumerate(offsets):
-            if cell == middle:
-                color = RGBColor(*centres[i])
-            else:
-                direction = camera.get_direction(x, y, u, v)
-                color = compute_color(Ray(Vector3D(0.0, 0.0, 0.0), direction, INFINITY, 0.0))
+        for u, v in offsets:
+            direction = camera.get_direction(x, y, u, v)
+            color = compute_color(Ray(Vector3D(0.0, 0.0, 0.0), direction, INFINITY, 0.0))
             try:
                 r += color.r
                 g += color.g
@@ -313,22 +297,19 @@ class _CourseRows:
 
 class _SampledRows:
     """Rows of N jittered samples per pixel with their error estimate (sampled_pixels), in
-    every pixel, or in the pixels that `refined` marks, whose colours through their centres
-    are `centre` (the image of the centre rays)."""
+    every pixel, or in the pixels that `refined` marks."""
 
     channels = 6
 
-    def __init__(self, samples, refined=None, centre=None):
+    def __init__(self, samples, refined=None):
         self.samples = samples
         self.refined = refined
-        self.centre = centre
 
     def __call__(self, integrator, y):
         if self.refined is None:
             xs = list(range(integrator.scene.camera.width))
             return sampled_pixels(integrator, y, self.samples, xs)
-        xs = np.flatnonzero(self.refined[y]).tolist()
-        return sampled_pixels(integrator, y, self.samples, xs, self.centre[y, xs].tolist())
+        return sampled_pixels(integrator, y, self.samples, np.flatnonzero(self.refined[y]).tolist())
 
     def pixels(self, y0, y1, width):
         if self.refined is None:
@@ -426,13 +407,14 @@ class UniformSampling:
 class AdaptiveSampling(UniformSampling):
     """Rays where the image needs them: first the ray through every pixel's centre (the
     course's image); then, in the pixels that refined_pixels picks, where two neighbours'
-    centre rays differ by more than tolerance as the PNG shows them, N - 1 jittered rays
-    more: those of UniformSampling's pixel_offsets in every cell but the one that holds
-    the centre, whose sample is the centre ray. So no pixel gets more than N rays, one in
-    each cell of the grid. The others keep their centre ray, which for a colour that
-    varies smoothly across the pixel is its average to second order. The decision is made
-    in this process between the two passes, so the image is the same for any number of
-    workers."""
+    centre rays differ by more than tolerance as the PNG shows them, the N jittered rays of
+    UniformSampling, whose average replaces the centre ray's colour: a refined pixel is
+    the uniform render's pixel bit for bit. Its centre ray only found the edge; kept as
+    one of the N samples it would stand for a cell it lies on the corner of, which
+    measurably raises the error at edges, so a refined pixel traces N + 1 rays. The
+    others keep their centre ray, which for a colour that varies smoothly across the
+    pixel is its average to second order. The decision is made in this process between
+    the two passes, so the image is the same for any number of workers."""
 
     adaptive = True
 
@@ -457,8 +439,8 @@ class AdaptiveSampling(UniformSampling):
         if count == 0:
             return
         if workers is None:  # the centre rays' time per ray, for this pass's rays
-            workers = worker_count(seconds * count * (self.samples - 1) / self.refined.size)
-        yield RenderPass(_SampledRows(self.samples, self.refined, self.centre), workers,
+            workers = worker_count(seconds * count * self.samples / self.refined.size)
+        yield RenderPass(_SampledRows(self.samples, self.refined), workers,
                          self._keep_refined, f" {self.samples} rays at edges")
 
     def _keep_centre(self, y0, block):
@@ -472,18 +454,19 @@ class AdaptiveSampling(UniformSampling):
         return np.where(refined, block[:, :, :3], self.centre[rows])
 
     def rays(self):
-        return 1 + (self.samples - 1) * self.refined
+        return 1 + self.samples * self.refined
 
     def report(self, integrator):
         rays = self.rays()
         count = int(self.refined.sum())
         path = integrator.get_filename() + SAMPLE_MAP_SUFFIX
         _write_atomically(Path(path), lambda f: plt.imsave(
-            f, rays, cmap=SAMPLE_MAP_COLORS, vmin=1, vmax=self.samples, format="png"))
+            f, rays, cmap=SAMPLE_MAP_COLORS, vmin=1, vmax=self.samples + 1, format="png"))
         print(f"Adaptive sampling: {count} of {rays.size} pixels ({count / rays.size:.1%}) "
-              f"got {self.samples} rays, the others their centre ray: {rays.mean():.2f} rays "
-              f"per pixel, where uniform sampling takes {self.samples}. Map of the rays per "
-              f"pixel: {path} (black: 1, pale yellow: {self.samples})")
+              f"got {self.samples} rays after their centre ray, the others their centre ray "
+              f"only: {rays.mean():.2f} rays per pixel, where uniform sampling takes "
+              f"{self.samples}. Map of the rays per pixel: {path} (black: 1, pale yellow: "
+              f"{self.samples + 1})")
         super().report(integrator)
 
 
