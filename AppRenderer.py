@@ -325,8 +325,8 @@ def parse_args(argv):
                              f"out/{SHEET_FILENAME}")
     args = parser.parse_args(argv)
     if args.adaptive and args.spp == 1:
-        parser.error("argument --adaptive: needs --spp N with N of 2 or more, the most rays "
-                     "a pixel may get")
+        parser.error("argument --adaptive: needs --spp N with N of 2 or more, the rays the "
+                     "pixels at edges get")
     if args.tolerance is not None and not args.adaptive:
         parser.error("argument --tolerance: only applies with --adaptive")
     return args

@@ -308,8 +308,9 @@ class _SampledRows:
     def __call__(self, integrator, y):
         if self.refined is None:
             xs = list(range(integrator.scene.camera.width))
-            return sampled_pixels(integrator, y, self.samples, xs)
-        return sampled_pixels(integrator, y, self.samples, np.flatnonzero(self.refined[y]).tolist())
+        else:
+            xs = np.flatnonzero(self.refined[y]).tolist()
+        return sampled_pixels(integrator, y, self.samples, xs)
 
     def pixels(self, y0, y1, width):
         if self.refined is None:
@@ -480,8 +481,8 @@ def sampling_plan(integrator, samples, adaptive, tolerance):
                          f"image's range as its PNG shows it), got {tolerance!r}")
     traced = _traces_its_rays(integrator)
     if adaptive and samples == 1:
-        raise ValueError("render: adaptive=True needs samples_per_pixel >= 2, the most rays "
-                         "a pixel may get; with 1 every pixel gets the ray through its centre")
+        raise ValueError("render: adaptive=True needs samples_per_pixel >= 2, the rays the "
+                         "pixels at edges get; with 1 every pixel gets the ray through its centre")
     if adaptive and not traced:
         print(f"PyRT: {type(integrator).__name__} makes its rows itself (it overrides "
               f"render_row), so adaptive sampling cannot choose its rays: every pixel gets "

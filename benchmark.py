@@ -11,7 +11,7 @@ turns. It is printed as a Markdown table and written to out/benchmark.md.
 Part 2, speed against accuracy. For Phong on the Cornell box (Figure 1) and Depth, Normal
 and Phong on the sphere scene (Figures 4 and 5), a 160 x 160 image (--accuracy-size)
 rendered with all cores, with uniform sampling at N = 1, 4, 16 and 64 samples per pixel
-(--samples) and adaptive sampling capped at N = 4, 16 and 64 (--adaptive-samples): the
+(--samples) and adaptive sampling with N = 4, 16 and 64 (--adaptive-samples): the
 render time, the error of the linear image (scene.rendered_image) against a reference
 rendered with 256 samples per pixel (--reference-samples), as RMSE and PSNR (the PSNR's
 peak is the reference's largest value), and the render's own estimate of its RMSE.
@@ -611,7 +611,7 @@ def parse_args(argv: list | None) -> argparse.Namespace:
                     "Phong, with one process and with all cores -> out/benchmark.md. "
                     "Part 2 (accuracy): render time, error against a high-quality "
                     "reference and estimated error for uniform sampling at 1, 4, 16 and "
-                    "64 samples per pixel and adaptive sampling capped at 4, 16 and 64 (by "
+                    "64 samples per pixel and adaptive sampling with 4, 16 and 64 (by "
                     "default), with the targets of adaptive sampling checked -> "
                     "out/speed_accuracy.md and out/speed_accuracy.png. With no options "
                     "both parts run, in 5 to 7 minutes on 2 cores.")

@@ -16,8 +16,10 @@ SAMPLED_REFERENCE_SAMPLES jittered rays per pixel: what the anti-aliasing tests 
 test_rendering.py measure the error of fewer samples against, stored so that a bias of
 the sampling shows as an error that no number of samples removes.
 
-    cornell_phong_32x32_1024spp.npy Regenerate them only when an intended change alters the course images, never to make
-a failing test pass; look at every new image before committing it, and give the reason for
+    cornell_phong_32x32_1024spp.npy
+
+Regenerate them only when an intended change alters the course images, never to make a
+failing test pass; look at every new image before committing it, and give the reason for
 the change in the commit message.
 
 Run it from the repository's root folder:
@@ -42,8 +44,8 @@ from helpers import small_cornell_box  # noqa: E402
 
 SAMPLED_REFERENCE_SIZE = 32
 SAMPLED_REFERENCE_SAMPLES = 1024
-SAMPLED_REFERENCE = REFERENCE_DIR / (f"cornell_phong_{SAMPLED_REFERENCE_SIZE}x"
-                                     f"{SAMPLED_REFERENCE_SIZE}_{SAMPLED_REFERENCE_SAMPLES}spp.npy")
+SAMPLED_REFERENCE = REFERENCE_DIR / "cornell_phong_{0}x{0}_{1}spp.npy".format(
+    SAMPLED_REFERENCE_SIZE, SAMPLED_REFERENCE_SAMPLES)
 
 
 class Figure(NamedTuple):

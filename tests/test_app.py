@@ -324,7 +324,7 @@ def usage_error(command_line, capsys, argv):
     (["--spp", "4", "--adaptive", "--tolerance", "1.5"],
      "argument --tolerance: must be a number from 0 to 1, got '1.5'"),
     (["--adaptive"],
-     "argument --adaptive: needs --spp N with N of 2 or more, the most rays a pixel may get"),
+     "argument --adaptive: needs --spp N with N of 2 or more, the rays the pixels at edges get"),
     (["--spp", "4", "--tolerance", "0.1"], "argument --tolerance: only applies with --adaptive"),
 ])
 def test_a_bad_command_line_gets_a_message_that_says_what_to_fix(command_line, capsys, argv,

@@ -1143,7 +1143,7 @@ def test_adaptive_with_one_sample_per_pixel_says_what_adaptive_needs(tmp_path):
     with pytest.raises(ValueError) as error:
         integrator.render(progress=False, samples_per_pixel=1, adaptive=True)
     assert str(error.value) == (
-        "render: adaptive=True needs samples_per_pixel >= 2, the most rays a pixel may get; "
+        "render: adaptive=True needs samples_per_pixel >= 2, the rays the pixels at edges get; "
         "with 1 every pixel gets the ray through its centre")
 
 
