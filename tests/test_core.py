@@ -976,6 +976,47 @@ def test_rays_from_a_hit_point_moved_in_place_see_what_is_there_now(axis):
     assert scene.any_hit(r) is hits_anything(scene, r) is True
 
 
+def tile_under_a_light_beside_a_wall():
+    """A tile y = 3 (x, z in [-0.5, 0.5]) under a light at (0, 5, 0), a wall x = 1.5 (y in
+    [0, 6], z in [-2, 2]) beside them, and the tile's hit at (0.2, 3, -0.1), seen from
+    above: neither the tile nor the wall can hide the light from a point of the tile."""
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(-0.5, 3.0, 0.5), Vector3D(1.0, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -1.0)))
+    scene.add_object(Parallelogram(Vector3D(1.5, 0.0, -2.0), Vector3D(0.0, 6.0, 0.0),
+                                   Vector3D(0.0, 0.0, 4.0)))
+    scene.add_point_light_sources(PointLight(Vector3D(0.0, 5.0, 0.0), WHITE_LIGHT))
+    hit = scene.closest_hit(ray((0.2, 4.0, -0.1), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (0.2, 3.0, -0.1))
+    return scene, hit
+
+
+@pytest.mark.parametrize("axis, value", [
+    (0, 3.0),    # to (3, 3, -0.1), beyond the wall, which hides the light
+    (1, -0.1),   # to (0.2, -0.1, -0.1), under the tile, which hides the light
+])
+def test_a_hit_point_moved_to_a_value_another_coordinate_had_sees_what_is_there_now(axis,
+                                                                                   value):
+    # A moved coordinate can take any value, the one another coordinate had too: the point
+    # is a new one all the same.
+    scene, hit = tile_under_a_light_beside_a_wall()
+    setattr(hit.hit_point, "xyz"[axis], value)
+    r = student_shadow_ray(hit, scene.pointLights[0])
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+def test_shadow_rays_after_an_object_is_removed_see_the_scene_as_it_is_now():
+    # The wall of floor_and_wall is hit (object 1), then the floor is taken out of the
+    # list: the wall is object 0, the only one, and nothing lies between its hit point and
+    # the light on its right.
+    scene = floor_and_wall()
+    hit = scene.closest_hit(ray((1.0, 0.5, 0.0), (-1.0, 0.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (1, (0.0, 0.5, 0.0))
+    del scene.object_list[0]
+    r = student_shadow_ray(hit, scene.pointLights[0])
+    assert scene.any_hit(r) is hits_anything(scene, r) is False
+
+
 def test_rays_from_a_hit_point_that_start_on_its_surface_see_that_surface():
     # With t_min = 0 the ray from the tile to the light above it meets the tile at t = 0.
     scene = cube_around_a_tile()
