@@ -1336,6 +1336,16 @@ def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
     assert out[0, 1, 0] == pytest.approx(0.5 ** 0.4, rel=1e-6)
 
 
+@pytest.mark.parametrize("image", [
+    np.array([[[2.0, 3.0, 6.0]]]),               # a linear image, in double precision
+    np.full((1, 2, 3), 4.0),                      # flat: left as it is
+    np.array([[[np.nan, np.inf, -np.inf]]]),      # nothing finite: all black
+], ids=["linear", "flat", "not-finite"])
+def test_tonemap_gives_single_precision_as_opencv_does(image):
+    # cv2.createTonemap().process returns float32, whatever the image holds
+    assert PyRT_Core.tonemap_image(image).dtype == np.float32
+
+
 def with_non_finite(a, b, c):
     """A 2 x 2 image whose finite values run from 1 to 3, with a, b and c in three of its
     channels, and what the tonemapper shows: finite v as ((v - 1)/(3 - 1)) ** (1/2.5), in
