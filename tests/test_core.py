@@ -1337,6 +1337,24 @@ def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
 
 
 @pytest.mark.parametrize("image", [
+    np.full((1, 2, 3), 0.25, np.float32),                   # flat: left as it is, 0.25 ** 0.4
+    np.array([[[0.0, 2.0 ** -52, 0.0]]], np.float32),       # max - min = DBL_EPSILON: flat
+    np.array([[[0.0, 2.0 ** -51, 0.0]]], np.float32),       # twice that: stretched to [0, 1]
+    np.array([[[-3.0, 1.0, -1.0]]], np.float32),            # below zero: -3 -> 0, -1 -> 0.5
+], ids=["flat", "flat-to-epsilon", "just-not-flat", "negative"])
+def test_tonemap_agrees_with_opencv_on_flat_and_negative_images(image):
+    opencv = cv2.createTonemap(gamma=2.5).process(image.copy())
+    np.testing.assert_allclose(PyRT_Core.tonemap_image(image), opencv, rtol=1e-6, atol=1e-7)
+
+
+def test_tonemap_shows_nan_as_darkest_in_an_image_below_zero():
+    # finite values from -3 to 1: NaN and -inf are shown as -3, 0; +inf as 1, 1
+    image = np.array([[[-3.0, 1.0, np.nan], [-1.0, -np.inf, np.inf]]])
+    assert PyRT_Core.tonemap_image(image) == pytest.approx(
+        np.array([[[0.0, 1.0, 0.0], [0.5 ** 0.4, 0.0, 1.0]]]), rel=1e-6)
+
+
+@pytest.mark.parametrize("image", [
     np.array([[[2.0, 3.0, 6.0]]]),               # a linear image, in double precision
     np.full((1, 2, 3), 4.0),                      # flat: left as it is
     np.array([[[np.nan, np.inf, -np.inf]]]),      # nothing finite: all black
