@@ -1316,6 +1316,17 @@ def test_failed_save_keeps_the_previous_file_whole(tmp_path, monkeypatch):
     assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
 
 
+def test_save_that_cannot_create_its_file_reports_that_error_alone(tmp_path, monkeypatch):
+    def cannot_create(path, mode):  # no temporary file comes to exist
+        raise OSError("too many open files")
+
+    monkeypatch.setattr(PyRT_Core, "open", cannot_create, raising=False)
+    with pytest.raises(OSError, match="too many open files") as error:
+        scene_with_image(np.ones((2, 2, 3))).save_image(str(tmp_path / "picture"))
+    assert error.value.__context__ is None  # no second error from cleaning up
+    assert list(tmp_path.iterdir()) == []
+
+
 # ------------------------------------------------------------------------------------------
 # Tonemapping
 # ------------------------------------------------------------------------------------------
@@ -1345,6 +1356,12 @@ def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
 def test_tonemap_agrees_with_opencv_on_flat_and_negative_images(image):
     opencv = cv2.createTonemap(gamma=2.5).process(image.copy())
     np.testing.assert_allclose(PyRT_Core.tonemap_image(image), opencv, rtol=1e-6, atol=1e-7)
+
+
+@pytest.mark.parametrize("value, shown", [(4.0, 1.0), (-0.5, 0.0)])
+def test_tonemap_shows_a_flat_image_outside_0_to_1_clipped(value, shown):
+    # OpenCV leaves a flat image as it is; the course clips the result to [0, 1]
+    assert (PyRT_Core.tonemap_image(np.full((2, 1, 3), value)) == shown).all()
 
 
 def test_tonemap_shows_nan_as_darkest_in_an_image_below_zero():
