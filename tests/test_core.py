@@ -1262,6 +1262,14 @@ def test_saved_png_is_the_tonemapped_image(saved):
     np.testing.assert_allclose(png[:, :, :3], expected, atol=1.01 / 255)
 
 
+def test_saved_png_without_tonemapping_shows_the_linear_values_clipped_to_0_1(tmp_path):
+    # as Figure 2's: v in [0, 1] as floor(255 v) / 255, below 0 black, above 1 white
+    image = np.array([[[-0.5, 0.5, 2.0], [0.2, -3.0, 1.5]]])
+    scene_with_image(image).save_image(str(tmp_path / "picture"), tonemap=False)
+    expected = np.array([[[0.0, 127.0, 255.0], [51.0, 0.0, 255.0]]]) / 255.0
+    assert read_png(tmp_path / "picture.png") == pytest.approx(expected, abs=1e-6)
+
+
 def test_save_image_before_set_camera_says_to_set_the_camera_and_render(tmp_path):
     with pytest.raises(RuntimeError, match=r"^Scene\.save_image: the scene has no image yet; "
                                            r"call scene\.set_camera\(camera\) and render "
