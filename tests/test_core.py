@@ -751,6 +751,32 @@ def test_visible_lights_are_those_in_front_with_nothing_in_between():
     assert r2 == pytest.approx(1.25, rel=1e-15)
 
 
+@pytest.mark.parametrize("axis", [0, 1, 2])
+@pytest.mark.parametrize("flat", ["plane", "parallelogram"])
+def test_a_wall_between_a_sphere_and_the_light_shadows_it_along_every_axis(axis, flat):
+    # The wall is the plane u = -2 of axis u (a 20 x 20 parallelogram, or infinite), the
+    # light at u = 1 on one side of it, a sphere of radius 1 around u = -5 on the other.
+    # The sphere's point u = -4 faces the light, and the wall hides it.
+    def along(u, rest=0.0):
+        xyz = [rest] * 3
+        xyz[axis] = u
+        return Vector3D(*xyz)
+
+    scene = Scene()
+    if flat == "plane":
+        scene.add_object(InfinitePlane(along(-2.0), along(1.0)))
+    else:
+        s1, s2 = [0.0] * 3, [0.0] * 3
+        s1[(axis + 1) % 3] = s2[(axis + 2) % 3] = 20.0
+        scene.add_object(Parallelogram(along(-2.0, -10.0), Vector3D(*s1), Vector3D(*s2)))
+    scene.add_object(Sphere(along(-5.0), 1.0))
+    scene.add_point_light_sources(PointLight(along(1.0), WHITE_LIGHT))
+    hit = scene.closest_hit(Ray(along(-3.0), along(-1.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (1, as_tuple(along(-4.0)))
+    assert scene.visible_lights(hit) == []
+    assert scene.any_hit(student_shadow_ray(hit, scene.pointLights[0])) is True
+
+
 def test_student_shadow_rays_from_a_hit_point_see_the_same_lights():
     scene = floor_and_wall()
     hit = floor_hit(scene)
