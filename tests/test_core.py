@@ -777,6 +777,37 @@ def test_a_wall_between_a_sphere_and_the_light_shadows_it_along_every_axis(axis,
     assert scene.any_hit(student_shadow_ray(hit, scene.pointLights[0])) is True
 
 
+def test_a_sphere_cut_by_a_wall_is_shadowed_behind_it():
+    # The wall x = -2 (y, z in [-10, 10]) cuts the sphere of radius 1 around (-1.5, 0, 0);
+    # the light is at (1, 5, 0). The sphere's point p = (-2.2, sqrt(0.51), 0), behind the
+    # wall, faces the light (n.(light - p) = 0.82 > 0), and its way there crosses the wall
+    # at y = 0.98.
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(-2.0, -10.0, -10.0), Vector3D(0.0, 20.0, 0.0),
+                                   Vector3D(0.0, 0.0, 20.0)))
+    scene.add_object(Sphere(Vector3D(-1.5, 0.0, 0.0), 1.0))
+    scene.add_point_light_sources(PointLight(Vector3D(1.0, 5.0, 0.0), WHITE_LIGHT))
+    n = Vector3D(-0.7, math.sqrt(0.51), 0.0)
+    hit = scene.closest_hit(Ray(Vector3D(-1.5, 0.0, 0.0) + n * 1.5, n * -1.0))
+    assert hit.primitive_index == 1
+    assert as_tuple(hit.hit_point) == pytest.approx((-2.2, math.sqrt(0.51), 0.0), abs=1e-12)
+    assert scene.visible_lights(hit) == []
+    r = student_shadow_ray(hit, scene.pointLights[0])
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
+def test_a_wall_on_an_infinite_floor_shadows_the_floor_behind_it():
+    # floor_and_wall with an infinite floor: its point (-0.5, 0, 0), left of the wall x = 0,
+    # does not see the light at (1, 1, 0), its way crossing the wall at height 1/3.
+    scene = floor_and_wall()
+    scene.object_list[0] = InfinitePlane(Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0))
+    hit = scene.closest_hit(ray((-0.5, 3.0, 0.0), (0.0, -1.0, 0.0)))
+    assert (hit.primitive_index, as_tuple(hit.hit_point)) == (0, (-0.5, 0.0, 0.0))
+    assert [light.pos for light, _, _ in scene.visible_lights(hit)] == [LEFT]
+    r = student_shadow_ray(hit, scene.pointLights[0])
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
 def test_student_shadow_rays_from_a_hit_point_see_the_same_lights():
     scene = floor_and_wall()
     hit = floor_hit(scene)
