@@ -955,6 +955,32 @@ def test_rays_that_leave_objects_out_see_what_testing_all_would(copies, rays):
                 student_shadow_ray(hits[1], theirs))
 
 
+@pytest.mark.parametrize("light_y, wall_s1", [
+    (1.5, (2.0, 2.0, 0.0)),    # light above the floor, the wall y - 1 = x over it
+    (0.5, (2.0, -2.0, 0.0)),   # light below it, the wall y - 1 = -x under it
+], ids=["above", "below"])
+def test_lights_seen_from_where_a_slanted_wall_meets_the_floor_are_those_testing_all_sees(
+        light_y, wall_s1):
+    # The floor y = 1 (x in [0, 2]) and a wall leaning over it, or under it, meet at the
+    # edge x = 0, y = 1; the light at (3, light_y, 0) lies on the floor's side of the wall.
+    # From the edge, where a camera ray between them meets both (the floor first, by the
+    # tie rule), the shadow ray starts just off the floor on the light's side, which is
+    # just across the wall: leaving the wall out must not change what it sees.
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(0.0, 1.0, 1.0), Vector3D(2.0, 0.0, 0.0),
+                                   Vector3D(0.0, 0.0, -2.0)))
+    scene.add_object(Parallelogram(Vector3D(0.0, 1.0, 1.0), Vector3D(*wall_s1),
+                                   Vector3D(0.0, 0.0, -2.0)))
+    scene.add_point_light_sources(PointLight(Vector3D(3.0, light_y, 0.0), WHITE_LIGHT))
+    plain = plain_copy(scene)
+    between = Vector3D(1.0, 1.0 + (light_y - 1.0), 0.0)
+    hits = [s.closest_hit(Ray(between, Vector3D(0.0, 1.0, 0.0) - between)) for s in
+            (scene, plain)]
+    assert [h.primitive_index for h in hits] == [0, 0]
+    assert as_tuple(hits[0].hit_point) == pytest.approx((0.0, 1.0, 0.0), abs=1e-15)
+    assert len(scene.visible_lights(hits[0])) == len(plain.visible_lights(hits[1]))
+
+
 def cube_around_a_tile():
     """A floor tile y = 0 (x, z in [-0.25, 0.25]) in a closed cube of six 2 x 2 walls at
     x, y, z = -1 and 1, with lights on each axis: at +-2, outside the cube, and at +-0.5,
