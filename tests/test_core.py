@@ -796,6 +796,34 @@ def test_a_sphere_cut_by_a_wall_is_shadowed_behind_it():
     assert scene.any_hit(r) is hits_anything(scene, r) is True
 
 
+@pytest.mark.parametrize("axis, s1, s2, point, normal", [
+    # spans x from 0 to 2 across the wall x = 1, through its side s2
+    (0, (0.0, 0.0, 1.0), (2.0, 1.0, 0.0), (1.6, 0.8, 0.5), (-1.0, 2.0, 0.0)),
+    # spans y from 0 to 2 across the wall y = 1, through its side s1
+    (1, (0.0, 2.0, 1.0), (1.0, 0.0, 0.0), (0.5, 1.6, 0.8), (0.0, -1.0, 2.0)),
+], ids=["x", "y"])
+def test_a_tile_reaching_across_a_wall_is_shadowed_beyond_it(axis, s1, s2, point, normal):
+    # A tile from the origin with sides s1, s2 reaches across the wall u = 1 of axis u (10 x
+    # 10, centred on the axis); the light at u = -3 lies on the near side. The tile's point
+    # beyond the wall faces the light (along the tile's normal given), and the wall hides it.
+    scene = Scene()
+    scene.add_object(Parallelogram(Vector3D(0.0, 0.0, 0.0), Vector3D(*s1), Vector3D(*s2)))
+    corner, sides = [-5.0] * 3, [[0.0] * 3, [0.0] * 3]
+    corner[axis] = 1.0
+    sides[0][(axis + 1) % 3] = sides[1][(axis + 2) % 3] = 10.0
+    scene.add_object(Parallelogram(Vector3D(*corner), *(Vector3D(*side) for side in sides)))
+    light = [0.5] * 3
+    light[axis] = -3.0
+    scene.add_point_light_sources(PointLight(Vector3D(*light), WHITE_LIGHT))
+    n = Normalize(Vector3D(*normal))
+    hit = scene.closest_hit(Ray(Vector3D(*point) + n, n * -1.0))
+    assert hit.primitive_index == 0
+    assert as_tuple(hit.hit_point) == pytest.approx(point, abs=1e-12)
+    assert scene.visible_lights(hit) == []
+    r = student_shadow_ray(hit, scene.pointLights[0])
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
 def test_a_wall_on_an_infinite_floor_shadows_the_floor_behind_it():
     # floor_and_wall with an infinite floor: its point (-0.5, 0, 0), left of the wall x = 0,
     # does not see the light at (1, 1, 0), its way crossing the wall at height 1/3.

@@ -740,6 +740,28 @@ def test_camera_fov_must_be_a_number(fov):
         Camera(10, 10, fov)
 
 
+@pytest.mark.parametrize("fov", [0.0, math.pi, -1.0, NAN])
+def test_camera_fov_set_later_in_radians_must_lie_strictly_between_0_and_pi(fov):
+    camera = Camera(10, 10, 60)
+    with pytest.raises(ValueError) as error:
+        camera.vertical_fov = fov
+    assert str(error.value) == ("Camera: vertical_fov is in radians once the camera exists "
+                                f"and must lie strictly between 0 and pi, got {fov!r}")
+
+
+def test_camera_fov_set_later_just_inside_0_to_pi_is_taken():
+    camera = Camera(10, 10, 60)
+    for fov in (1e-9, math.pi - 1e-9):
+        camera.vertical_fov = fov
+        assert camera.vertical_fov == fov
+
+
+def test_camera_size_given_as_whole_floats_becomes_whole_numbers():
+    camera = Camera(500.0, 400.0, 60)
+    assert (camera.width, camera.height) == (500, 400)
+    assert type(camera.width) is int and type(camera.height) is int
+
+
 @pytest.mark.parametrize("radius", [0, -1, INF, NAN])
 def test_sphere_radius_must_be_positive_and_finite(radius):
     with pytest.raises(ValueError, match="^Sphere: sphere_radius must be positive and finite"):
@@ -818,6 +840,13 @@ def test_colours_that_are_not_rgb_colours_are_refused_naming_the_argument(make, 
 def test_set_camera_needs_a_camera():
     with pytest.raises(TypeError, match=r"^Scene\.set_camera: camera must be a Camera, got "):
         Scene().set_camera((500, 500, 60))
+
+
+def test_add_point_light_sources_needs_a_point_light():
+    with pytest.raises(TypeError) as error:
+        Scene().add_point_light_sources((0.0, 1.0, 0.0))
+    assert str(error.value) == ("Scene.add_point_light_sources: light must be a PointLight, "
+                                "got (0.0, 1.0, 0.0)")
 
 
 def test_set_brdf_needs_a_brdf_and_names_the_class():
