@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 
 import PyRT_Core
 from helpers import PNG_TOLERANCE, read_png
-from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, Cross, HitData, Length, Normalize, RGBColor,
-                         Ray, Vector3D)
+from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, Cross, Dot, HitData, Length, Normalize,
+                         RGBColor, Ray, Vector3D)
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight,
                        Primitive, Scene, Sphere)
 
@@ -796,29 +796,45 @@ def test_a_sphere_cut_by_a_wall_is_shadowed_behind_it():
     assert scene.any_hit(r) is hits_anything(scene, r) is True
 
 
-@pytest.mark.parametrize("axis, s1, s2, point, normal", [
-    # spans x from 0 to 2 across the wall x = 1, through its side s2
-    (0, (0.0, 0.0, 1.0), (2.0, 1.0, 0.0), (1.6, 0.8, 0.5), (-1.0, 2.0, 0.0)),
-    # spans y from 0 to 2 across the wall y = 1, through its side s1
-    (1, (0.0, 2.0, 1.0), (1.0, 0.0, 0.0), (0.5, 1.6, 0.8), (0.0, -1.0, 2.0)),
-], ids=["x", "y"])
-def test_a_tile_reaching_across_a_wall_is_shadowed_beyond_it(axis, s1, s2, point, normal):
-    # A tile from the origin with sides s1, s2 reaches across the wall u = 1 of axis u (10 x
-    # 10, centred on the axis); the light at u = -3 lies on the near side. The tile's point
-    # beyond the wall faces the light (along the tile's normal given), and the wall hides it.
+# A tile with one corner across the wall x = 1, from the near side (x < 1): its point p
+# and its sides s1, s2, and (a, b), where p + a s1 + b s2 is that corner.
+CORNER_ACROSS = [
+    ((0.0, 0.0, 0.0), (0.8, 1.0, 0.0), (0.8, 0.0, 1.0), (1, 1)),
+    ((1.6, 0.0, 0.0), (-0.8, 1.0, 0.0), (-0.8, 0.0, 1.0), (0, 0)),
+    ((0.8, 0.0, 0.0), (0.8, 1.0, 0.0), (-0.8, 0.0, 1.0), (1, 0)),
+    ((0.8, 0.0, 0.0), (-0.8, 1.0, 0.0), (0.8, 0.0, 1.0), (0, 1)),
+]
+
+
+@pytest.mark.parametrize("axis", [0, 1, 2], ids=["x", "y", "z"])
+@pytest.mark.parametrize("p, s1, s2, corner", CORNER_ACROSS,
+                         ids=["far corner", "point", "point + s1", "point + s2"])
+def test_a_tile_with_a_corner_across_a_wall_is_shadowed_beyond_it(axis, p, s1, s2, corner):
+    # The scene with x turned into the axis given: the wall u = 1 (10 x 10, centred on the
+    # axis), the light at u = -3, the tile reaching across the wall with one corner only.
+    # The tile's point near that corner, at u = 1.44, faces the light, which the wall hides.
+    def turned(v):
+        w = [0.0] * 3
+        for i, c in enumerate(v):
+            w[(axis + i) % 3] = c
+        return Vector3D(*w)
+
+    p, s1, s2 = turned(p), turned(s1), turned(s2)
     scene = Scene()
-    scene.add_object(Parallelogram(Vector3D(0.0, 0.0, 0.0), Vector3D(*s1), Vector3D(*s2)))
-    corner, sides = [-5.0] * 3, [[0.0] * 3, [0.0] * 3]
-    corner[axis] = 1.0
-    sides[0][(axis + 1) % 3] = sides[1][(axis + 2) % 3] = 10.0
-    scene.add_object(Parallelogram(Vector3D(*corner), *(Vector3D(*side) for side in sides)))
-    light = [0.5] * 3
-    light[axis] = -3.0
-    scene.add_point_light_sources(PointLight(Vector3D(*light), WHITE_LIGHT))
-    n = Normalize(Vector3D(*normal))
-    hit = scene.closest_hit(Ray(Vector3D(*point) + n, n * -1.0))
+    scene.add_object(Parallelogram(p, s1, s2))
+    scene.add_object(Parallelogram(turned((1.0, -5.0, -5.0)), turned((0.0, 10.0, 0.0)),
+                                   turned((0.0, 0.0, 10.0))))
+    light = turned((-3.0, 0.5, 0.5))
+    scene.add_point_light_sources(PointLight(light, WHITE_LIGHT))
+    a, b = (0.9 if k else 0.1 for k in corner)
+    point = p + s1 * a + s2 * b
+    assert Dot(point, turned((1.0, 0.0, 0.0))) == pytest.approx(1.44, abs=1e-12)
+    n = Normalize(Cross(s1, s2))
+    if Dot(n, light - point) < 0.0:
+        n = n * -1.0  # the tile's side that faces the light
+    hit = scene.closest_hit(Ray(point + n * 0.1, n * -1.0))
     assert hit.primitive_index == 0
-    assert as_tuple(hit.hit_point) == pytest.approx(point, abs=1e-12)
+    assert as_tuple(hit.hit_point) == pytest.approx(as_tuple(point), abs=1e-12)
     assert scene.visible_lights(hit) == []
     r = student_shadow_ray(hit, scene.pointLights[0])
     assert scene.any_hit(r) is hits_anything(scene, r) is True
