@@ -614,6 +614,33 @@ def test_changing_a_returned_hit_changes_neither_the_scene_nor_another_hit(kind)
         assert as_tuple(obj.normal) == (0.0, 0.0, 1.0)
 
 
+@pytest.mark.parametrize("origin", [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)])
+def test_closest_hit_from_a_point_that_is_not_the_camera_sees_what_lies_ahead(origin):
+    # A ray along d = (0.6, 0, -0.8) from a point 1 away from the camera meets the sphere
+    # of radius 0.5 centred 5 along it, which the camera sees in a direction some 8 degrees
+    # off d, beyond the 7 degrees the sphere fills.
+    scene = Scene()
+    d = Vector3D(0.6, 0.0, -0.8)
+    scene.add_object(Sphere(Vector3D(*origin) + d * 5.0, 0.5))
+    hit = scene.closest_hit(Ray(Vector3D(*origin), d))
+    assert hit.has_hit and hit.hit_distance == pytest.approx(4.5, rel=1e-15)
+
+
+@pytest.mark.parametrize("s2", [(3.6, 0.2, 0.0), (-3.6, 0.2, 0.0)], ids=["acute", "obtuse"])
+def test_camera_rays_near_every_corner_of_a_thin_skewed_parallelogram_hit_it(s2):
+    # The parallelogram at z = -5 with sides (4, 0, 0) and s2 is long and thin: its corners
+    # lie far from its centre along its long diagonal, s1 + s2 or s1 - s2.
+    scene = Scene()
+    point, s1, s2 = Vector3D(-2.0, -0.1, -5.0), Vector3D(4.0, 0.0, 0.0), Vector3D(*s2)
+    scene.add_object(Parallelogram(point, s1, s2))
+    for a, b in ((0.01, 0.5), (0.99, 0.5), (0.5, 0.01), (0.5, 0.99), (0.02, 0.98),
+                 (0.98, 0.02), (0.02, 0.02), (0.98, 0.98)):
+        target = point + s1 * a + s2 * b
+        hit = scene.closest_hit(Ray(Vector3D(0.0, 0.0, 0.0), Normalize(target)))
+        assert hit.has_hit, (a, b)
+        assert as_tuple(hit.hit_point) == pytest.approx(as_tuple(target), abs=1e-12)
+
+
 def test_closest_hit_on_empty_scene_is_a_miss():
     assert Scene().closest_hit(ray((0, 0, 0), (0, 0, -1))).has_hit is False
 
