@@ -225,6 +225,36 @@ def test_sphere_hit_is_the_first_one_at_or_beyond_t_min(origin, t_min, expected)
     assert scene.any_hit(r) is True
 
 
+def test_sphere_hit_exactly_at_t_max_from_inside_counts():
+    # from the centre the sphere is left exactly 2 ahead: [t_min, t_max] is closed
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
+    hit = sphere.intersect(ray((0, 0, -5), (0, 0, -1), t_min=0.0, t_max=2.0))
+    assert_hit(hit, (0.0, 0.0, -7.0), (0.0, 0.0, -1.0), 2.0)
+
+
+def test_sphere_with_a_negative_t_min_is_hit_behind_the_origin_at_its_distance():
+    # [t_min, t_max] = [-10, inf): the sphere around (0, 0, 5) of radius 2, behind the
+    # origin of a ray down -z, is met first at t = -7 (z = 7), then at -3 (z = 3)
+    sphere = Sphere(Vector3D(0.0, 0.0, 5.0), 2.0)
+    hit = sphere.intersect(ray((0, 0, 0), (0, 0, -1), t_min=-10.0))
+    assert_hit(hit, (0.0, 0.0, 7.0), (0.0, 0.0, 1.0), -7.0)
+
+
+def test_ray_exactly_tangent_to_a_sphere_touches_it():
+    # x = 1 is tangent to the unit sphere around (0, 0, -5): the ray touches it at
+    # (1, 0, -5), 5 along, where the normal is (1, 0, 0)
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 1.0)
+    hit = sphere.intersect(ray((1, 0, 0), (0, 0, -1)))
+    assert_hit(hit, (1.0, 0.0, -5.0), (1.0, 0.0, 0.0), 5.0)
+
+
+def test_ray_from_a_sphere_along_its_tangent_touches_it_only_at_its_origin():
+    sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 1.0)
+    hit = sphere.intersect(ray((1, 0, -5), (0, 0, -1), t_min=0.0))
+    assert_hit(hit, (1.0, 0.0, -5.0), (1.0, 0.0, 0.0), 0.0)
+    assert not sphere.intersect(ray((1, 0, -5), (0, 0, -1))).has_hit  # t_min = EPSILON
+
+
 def test_ray_starting_on_sphere_surface_does_not_hit_it_within_epsilon():
     # leaving the surface at z = -3 outwards: the only root is t = 0 < t_min = EPSILON
     sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
@@ -639,6 +669,16 @@ def test_camera_rays_near_every_corner_of_a_thin_skewed_parallelogram_hit_it(s2)
         hit = scene.closest_hit(Ray(Vector3D(0.0, 0.0, 0.0), Normalize(target)))
         assert hit.has_hit, (a, b)
         assert as_tuple(hit.hit_point) == pytest.approx(as_tuple(target), abs=1e-12)
+
+
+def test_camera_ray_grazing_an_infinite_floor_meets_it_far_away():
+    # 1e-10 below the horizon, the ray from the camera (t_max infinite, as render() makes
+    # camera rays) meets the floor 1 below at 1e10
+    scene = Scene()
+    scene.add_object(InfinitePlane(Vector3D(0.0, -1.0, 0.0), Vector3D(0.0, 1.0, 0.0)))
+    d = Normalize(Vector3D(0.0, -1e-10, -1.0))
+    hit = scene.closest_hit(Ray(Vector3D(0.0, 0.0, 0.0), d, float("inf"), 0.0))
+    assert hit.has_hit and hit.hit_distance == pytest.approx(1e10, rel=1e-12)
 
 
 def test_closest_hit_on_empty_scene_is_a_miss():
