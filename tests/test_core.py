@@ -240,6 +240,20 @@ def test_sphere_with_a_negative_t_min_is_hit_behind_the_origin_at_its_distance()
     assert_hit(hit, (0.0, 0.0, 7.0), (0.0, 0.0, 1.0), -7.0)
 
 
+def test_rays_leaving_a_sphere_outwards_never_meet_it_again():
+    # From 5000 points of the sphere's surface, each in a direction of its outer side:
+    # a sphere is convex, so none of them meets it again (here, as a student's shadow
+    # rays do, from t_min = EPSILON on).
+    rng = np.random.default_rng(7)
+    sphere = Sphere(Vector3D(0.3, -0.2, -5.0), 1.3)
+    for v, w in rng.normal(size=(5000, 2, 3)):
+        n = Normalize(Vector3D(*v))
+        d = Normalize(Vector3D(*w))
+        if Dot(d, n) < 0.0:
+            d = d * -1.0
+        assert not sphere.intersect(Ray(sphere.origin + n * sphere.radius, d)).has_hit
+
+
 def test_ray_exactly_tangent_to_a_sphere_touches_it():
     # x = 1 is tangent to the unit sphere around (0, 0, -5): the ray touches it at
     # (1, 0, -5), 5 along, where the normal is (1, 0, 0)
