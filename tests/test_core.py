@@ -505,6 +505,8 @@ def test_new_scene_is_empty():
     scene = Scene()
     assert (scene.camera, scene.env_map, scene.rendered_image) == (None, None, None)
     assert scene.object_list == [] and scene.pointLights == []
+    # no ambient light until set_ambient: black
+    assert (scene.i_a.r, scene.i_a.g, scene.i_a.b) == (0.0, 0.0, 0.0)
 
 
 def test_set_camera_allocates_image_of_height_width_3():
