@@ -430,9 +430,16 @@ def test_skewed_parallelogram_hits_inside_the_skewed_region(x, y):
     (0.2, 0.8),   # inside the bounding box [0, 2] x [0, 1], but a = -0.6
     (1.8, 0.2),   # a = 1.6
     (0.05, 0.5),  # a = -0.45
+    (2.5, 1.5),   # a = 1, b = 1.5
 ])
 def test_skewed_parallelogram_misses_in_bounding_box_outside_the_skew(x, y):
     assert skewed().intersect(down_at(x, y)).has_hit is False
+
+
+def test_parallelogram_hit_at_exactly_t_max_counts():
+    assert_hit(square().intersect(ray((0, 0, 0), (0, 0, -1), t_max=3.0)), (0.0, 0.0, -3.0),
+               (0.0, 0.0, 1.0), 3.0)
+    assert not square().intersect(ray((0, 0, 0), (0, 0, -1), t_max=2.999)).has_hit
 
 
 @pytest.mark.parametrize("x, y", [

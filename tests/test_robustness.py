@@ -794,6 +794,21 @@ def test_parallelogram_point_must_be_finite(bad):
         Parallelogram(bad, Vector3D(1.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0))
 
 
+@pytest.mark.parametrize("make, name", [
+    (lambda v: Parallelogram(GOOD, v, Vector3D(0.0, 1.0, 0.0)), "Parallelogram: s1"),
+    (lambda v: Parallelogram(GOOD, Vector3D(1.0, 0.0, 0.0), v), "Parallelogram: s2"),
+    (lambda v: InfinitePlane(GOOD, v), "InfinitePlane: plane_normal"),
+], ids=["s1", "s2", "plane_normal"])
+def test_directions_that_are_not_finite_vectors_are_refused_naming_them(make, name):
+    bad = Vector3D(NAN, 0.0, 1.0)
+    with pytest.raises(ValueError) as error:
+        make(bad)
+    assert str(error.value) == f"{name} must have finite components, got {bad!r}"
+    with pytest.raises(TypeError) as error:
+        make((1.0, 0.0, 0.0))
+    assert str(error.value) == f"{name} must be a Vector3D, got (1.0, 0.0, 0.0)"
+
+
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_plane_origin_must_be_finite(bad):
     with pytest.raises(ValueError, match="^InfinitePlane: plane_origin must have finite "):
