@@ -815,6 +815,17 @@ def test_plane_origin_must_be_finite(bad):
         InfinitePlane(bad, Vector3D(0.0, 1.0, 0.0))
 
 
+def test_vectors_and_colours_must_hold_numbers():
+    with pytest.raises(TypeError) as error:
+        Sphere(Vector3D("x", 0.0, -5.0), 1.0)
+    assert str(error.value) == ("Sphere: sphere_origin must hold numbers, got "
+                                f"{Vector3D('x', 0.0, -5.0)!r}")
+    with pytest.raises(TypeError) as error:
+        PointLight(GOOD, RGBColor(None, 1.0, 1.0))
+    assert str(error.value) == ("PointLight: intensity_ must hold numbers, got "
+                                f"{RGBColor(None, 1.0, 1.0)!r}")
+
+
 def test_sphere_origin_must_be_a_vector():
     with pytest.raises(TypeError, match="^Sphere: sphere_origin must be a Vector3D, got "):
         Sphere((0.0, 0.0, -5.0), 1.0)
