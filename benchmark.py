@@ -614,7 +614,7 @@ def parse_args(argv: list | None) -> argparse.Namespace:
                     "64 samples per pixel and adaptive sampling with 4, 16 and 64 (by "
                     "default), with the targets of adaptive sampling checked -> "
                     "out/speed_accuracy.md and out/speed_accuracy.png. With no options "
-                    "both parts run, in 5 to 7 minutes on 2 cores.")
+                    "both parts run, in about 9 minutes on 2 cores.")
     parser.add_argument("--only", choices=("speed", "accuracy"),
                         help="run only part 1 (speed) or only part 2 (accuracy)")
     parser.add_argument("--size", type=positive_arg(int), default=500,

@@ -841,6 +841,14 @@ def test_visible_lights_are_those_in_front_with_nothing_in_between():
     assert r2 == pytest.approx(1.25, rel=1e-15)
 
 
+def assert_the_light_is_hidden(scene, hit):
+    """The scene's only light lights nothing at the hit's point: visible_lights finds no
+    light, and a student's shadow ray meets something, as testing every object finds."""
+    assert scene.visible_lights(hit) == []
+    r = student_shadow_ray(hit, scene.pointLights[0])
+    assert scene.any_hit(r) is hits_anything(scene, r) is True
+
+
 @pytest.mark.parametrize("axis", [0, 1, 2])
 @pytest.mark.parametrize("flat", ["plane", "parallelogram"])
 def test_a_wall_between_a_sphere_and_the_light_shadows_it_along_every_axis(axis, flat):
@@ -863,8 +871,7 @@ def test_a_wall_between_a_sphere_and_the_light_shadows_it_along_every_axis(axis,
     scene.add_point_light_sources(PointLight(along(1.0), WHITE_LIGHT))
     hit = scene.closest_hit(Ray(along(-3.0), along(-1.0)))
     assert (hit.primitive_index, as_tuple(hit.hit_point)) == (1, as_tuple(along(-4.0)))
-    assert scene.visible_lights(hit) == []
-    assert scene.any_hit(student_shadow_ray(hit, scene.pointLights[0])) is True
+    assert_the_light_is_hidden(scene, hit)
 
 
 def test_a_sphere_cut_by_a_wall_is_shadowed_behind_it():
@@ -881,9 +888,7 @@ def test_a_sphere_cut_by_a_wall_is_shadowed_behind_it():
     hit = scene.closest_hit(Ray(Vector3D(-1.5, 0.0, 0.0) + n * 1.5, n * -1.0))
     assert hit.primitive_index == 1
     assert as_tuple(hit.hit_point) == pytest.approx((-2.2, math.sqrt(0.51), 0.0), abs=1e-12)
-    assert scene.visible_lights(hit) == []
-    r = student_shadow_ray(hit, scene.pointLights[0])
-    assert scene.any_hit(r) is hits_anything(scene, r) is True
+    assert_the_light_is_hidden(scene, hit)
 
 
 # A tile with one corner across the wall x = 1, from the near side (x < 1): its point p
@@ -925,9 +930,7 @@ def test_a_tile_with_a_corner_across_a_wall_is_shadowed_beyond_it(axis, p, s1, s
     hit = scene.closest_hit(Ray(point + n * 0.1, n * -1.0))
     assert hit.primitive_index == 0
     assert as_tuple(hit.hit_point) == pytest.approx(as_tuple(point), abs=1e-12)
-    assert scene.visible_lights(hit) == []
-    r = student_shadow_ray(hit, scene.pointLights[0])
-    assert scene.any_hit(r) is hits_anything(scene, r) is True
+    assert_the_light_is_hidden(scene, hit)
 
 
 def test_a_wall_on_an_infinite_floor_shadows_the_floor_behind_it():

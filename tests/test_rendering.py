@@ -494,19 +494,18 @@ def test_anti_aliased_image_is_the_same_on_every_run(tmp_path):
     assert np.array_equal(first, second)
 
 
-def sampled_reference():
-    """Phong on small_cornell_box(32) with 1024 samples per pixel (make_references.py)."""
-    return np.load(SAMPLED_REFERENCE)
+def error_against_the_sampled_reference(folder, samples, **options):
+    """The RMSE of Phong on small_cornell_box rendered with `samples` rays per pixel (and
+    render's other options) against the same with 1024 (make_references.py)."""
+    name = "_".join([f"spp{samples}", *options])
+    image = render_image(PhongIntegrator(str(folder / name)),
+                         small_cornell_box(SAMPLED_REFERENCE_SIZE), samples_per_pixel=samples,
+                         **options)
+    return float(np.sqrt(np.mean((image - np.load(SAMPLED_REFERENCE)) ** 2)))
 
 
 def test_error_against_a_high_sample_reference_shrinks_with_more_samples(tmp_path):
-    def error(samples):
-        image = render_image(PhongIntegrator(str(tmp_path / f"spp{samples}")),
-                             small_cornell_box(SAMPLED_REFERENCE_SIZE),
-                             samples_per_pixel=samples)
-        return float(np.sqrt(np.mean((image - sampled_reference()) ** 2)))
-
-    errors = [error(n) for n in (1, 4, 16, 64)]
+    errors = [error_against_the_sampled_reference(tmp_path, n) for n in (1, 4, 16, 64)]
     assert errors[0] > errors[1] > errors[2] > errors[3], errors
     # Averaging N samples cuts the error at least like 1/sqrt(N): 64 samples, 8 times.
     assert errors[3] < errors[0] / 8, errors
@@ -903,13 +902,9 @@ def test_adaptive_render_with_zero_tolerance_refines_every_pixel_as_uniform_samp
 
 
 def test_adaptive_render_error_is_no_higher_than_uniform_sampling_at_the_same_n(tmp_path):
-    def error(samples, **options):
-        image = render_image(PhongIntegrator(str(tmp_path / f"spp{samples}")),
-                             small_cornell_box(SAMPLED_REFERENCE_SIZE),
-                             samples_per_pixel=samples, **options)
-        return float(np.sqrt(np.mean((image - sampled_reference()) ** 2)))
-
-    uniform, adaptive, centre = error(16), error(16, adaptive=True), error(1)
+    uniform = error_against_the_sampled_reference(tmp_path, 16)
+    adaptive = error_against_the_sampled_reference(tmp_path, 16, adaptive=True)
+    centre = error_against_the_sampled_reference(tmp_path, 1)
     # refined pixels are uniform sampling's; the others, where the colour varies smoothly,
     # keep their centre ray, whose error (second order in the pixel's size) is as small as
     # that of uniform sampling's average there, but not always smaller
