@@ -11,7 +11,7 @@ assignments: the same object as Vector3D(x, y, z) gives, a sixth faster, because
 of __init__ is made.
 """
 from abc import ABC, abstractmethod
-from math import acos, atan2, cos, floor, hypot, pi, sin, sqrt
+from math import acos, atan2, cos, floor, frexp, ldexp, pi, sin, sqrt
 from numbers import Real
 from pathlib import Path
 
@@ -22,10 +22,10 @@ import numpy as np
 __all__ = [
     "np", "cv2", "plt", "ABC", "abstractmethod",
     "sqrt", "acos", "cos", "sin", "atan2", "floor", "pi",
-    "EPSILON", "HUGEVALUE", "PI", "TWO_PI", "INVERTED_PI",
+    "EPSILON", "HUGEVALUE", "INFINITY", "PI", "TWO_PI", "INVERTED_PI",
     "Vector3D", "Dot", "Cross", "Length", "Normalize", "orient_normal",
     "RGBColor", "BLACK", "WHITE", "GREEN", "RED",
-    "Ray", "HitData", "EnvironmentMap",
+    "Ray", "HitData", "shadow_ray", "EnvironmentMap",
 ]
 
 # ------------------------------------------------------------------------------------------
@@ -33,6 +33,7 @@ __all__ = [
 # ------------------------------------------------------------------------------------------
 EPSILON = 0.0001
 HUGEVALUE = 1000000.0
+INFINITY = float("inf")
 PI = pi
 TWO_PI = 2.0 * pi
 INVERTED_PI = 1.0 / pi
@@ -142,20 +143,62 @@ def Cross(a, b):
 
 
 def Length(v):
-    """The Euclidean length |v| = sqrt(v . v), computed without overflow or underflow."""
-    return hypot(v.x, v.y, v.z)
+    """The Euclidean length |v| = sqrt(v . v), as the course computes it, at every scale
+    (see euclidean_length)."""
+    return euclidean_length(v.x, v.y, v.z)
 
 
 def Normalize(v):
-    """The unit vector v / |v|; a zero vector has no direction and raises ValueError."""
-    x, y, z = v.x, v.y, v.z
-    length = hypot(x, y, z)
-    if length == 0.0:
-        raise ValueError(f"Normalize: cannot normalise the zero vector {v!r}, it has no "
-                         "direction; check how the vector was computed")
+    """The unit vector v * (1 / |v|), rounded as the course rounds it, at every scale (see
+    unit_components); a zero vector has no direction and raises ValueError."""
     unit = _new(Vector3D)
-    unit.x, unit.y, unit.z = x / length, y / length, z / length
+    unit.x, unit.y, unit.z = unit_components(v.x, v.y, v.z)
     return unit
+
+
+# Where x*x + y*y + z*z lies strictly between these, no square has overflowed, nor
+# underflowed by enough to change the sum: the formula holds as it is computed.
+SQUARES_LOW, SQUARES_HIGH = 2.0 ** -960, 2.0 ** 960
+
+
+def euclidean_length(x, y, z):
+    """sqrt(x*x + y*y + z*z), the length of the vector (x, y, z).
+
+    The squares of components beyond about 1e154 overflow and those below 1e-154
+    underflow. There the components are first divided by the power of two nearest to the
+    largest of them and the result multiplied back: multiplying by a power of two is exact
+    in floating point, so every rounding stays the same, and the result is the formula's
+    at every scale."""
+    squares = x * x + y * y + z * z
+    if SQUARES_LOW < squares < SQUARES_HIGH:
+        return sqrt(squares)
+    x, y, z, exponent = _rescaled(x, y, z)
+    return ldexp(sqrt(x * x + y * y + z * z), exponent)
+
+
+def unit_components(x, y, z):
+    """(x, y, z) * (1 / sqrt(x*x + y*y + z*z)), the unit vector of (x, y, z), with the
+    power-of-two scaling of euclidean_length where the squares would over- or underflow;
+    a ValueError for the zero vector, which has no direction."""
+    squares = x * x + y * y + z * z
+    if not SQUARES_LOW < squares < SQUARES_HIGH:
+        x, y, z, _ = _rescaled(x, y, z)
+        squares = x * x + y * y + z * z
+        if squares == 0.0:
+            raise ValueError(f"Normalize: cannot normalise the zero vector "
+                             f"{Vector3D(x, y, z)!r}, it has no direction; check how the "
+                             "vector was computed")
+    inverse = 1.0 / sqrt(squares)
+    return x * inverse, y * inverse, z * inverse
+
+
+def _rescaled(x, y, z):
+    """(x, y, z) / 2**e and e, for e the exponent of the largest |component| m
+    (m = f * 2**e with 0.5 <= f < 1); e = 0 when m is zero or not finite, which no scaling
+    helps."""
+    largest = max(abs(x), abs(y), abs(z))
+    exponent = frexp(largest)[1] if 0.0 < largest < INFINITY else 0
+    return ldexp(x, -exponent), ldexp(y, -exponent), ldexp(z, -exponent), exponent
 
 
 def orient_normal(normal, direction):
@@ -321,6 +364,42 @@ class HitData:
         return (f"HitData(has_hit=True, hit_point={self.hit_point!r}, normal={self.normal!r}, "
                 f"hit_distance={self.hit_distance!r}, primitive_index={self.primitive_index})")
 
+
+
+# A shadow ray stops this fraction of its length short of its target, so that a light
+# lying exactly on a surface is not hidden by that surface.
+SHADOW_EPSILON = 1e-6
+# Shadow rays start this far above the surface, relative to the size of the hit point's
+# coordinates (see shadow_ray).
+OFFSET_SCALE = 2.0 ** -32
+
+
+def shadow_ray(hit, target):
+    """The shadow ray from the point of `hit` (a HitData) to the point `target`, a light's
+    position: scene.any_hit(shadow_ray(hit, light.pos)) tells whether something lies in
+    between.
+
+    A hit point lies on its surface only to within rounding, so a ray leaving it may hit
+    that same surface again and shadow it in speckles ("shadow acne"). This ray starts a
+    little above the surface, on the side of target, and ignores the same first stretch
+    of its way (t_min), by offset = 2^-32 (largest |coordinate| of the point + its
+    hit_distance): far above the rounding error of the point, about 1e-16 of its size, far
+    below any detail of the scene, and the same at every scale, where a fixed EPSILON is
+    too large for tiny scenes and too small for huge ones. The ray stops a millionth of
+    its length short of target (SHADOW_EPSILON), so that a light lying on a surface is not
+    hidden by that surface."""
+    p, n = hit.hit_point, hit.normal
+    px, py, pz, nx, ny, nz = p.x, p.y, p.z, n.x, n.y, n.z
+    offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + hit.hit_distance)
+    if (target.x - px) * nx + (target.y - py) * ny + (target.z - pz) * nz < 0.0:
+        offset = -offset  # target lies behind the surface: start below it
+    ox, oy, oz = px + nx * offset, py + ny * offset, pz + nz * offset
+    dx, dy, dz = target.x - ox, target.y - oy, target.z - oz
+    distance = euclidean_length(dx, dy, dz)
+    if distance == 0.0:  # target is the start itself: there is nothing in between
+        return Ray(Vector3D(ox, oy, oz), Vector3D(nx, ny, nz), 0.0, abs(offset))
+    return Ray(Vector3D(ox, oy, oz), Vector3D(dx / distance, dy / distance, dz / distance),
+               distance * (1.0 - SHADOW_EPSILON), abs(offset))
 
 # ------------------------------------------------------------------------------------------
 # Environment map
