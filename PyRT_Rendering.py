@@ -37,6 +37,7 @@ from typing import NamedTuple
 import numpy as np
 from tqdm import tqdm
 
+from PyRT_Acceleration import accelerated, debugger_attached, plain
 from PyRT_Common import RGBColor, Ray, Vector3D, check_constants, plt
 from PyRT_Core import _write_atomically, tonemap_image
 
@@ -531,7 +532,7 @@ def rendered_blocks(integrator, workers, sampling, progress):
 
     blocks = passes()
     try:
-        with scene.unchanged():
+        with accelerated(integrator, height * width):
             yield blocks
     except KeyboardInterrupt:
         blocks.close()  # stops the worker processes, wherever Ctrl+C struck
@@ -595,6 +596,14 @@ def _render_with_workers(camera, blocks, rows, count, payload, renderer):
         sender.close()
         workers.append((process, receiver))
     running = list(workers)
+    with accelerated(renderer):
+        yield from _render_alongside(renderer, blocks, rows, shared, unreported, workers,
+                                     running)
+
+
+def _render_alongside(renderer, blocks, rows, shared, unreported, workers, running):
+    """The blocks of _render_with_workers that this process renders, with those the
+    workers report meanwhile; stops the workers at the end."""
     try:
         while (i := shared.take()) is not None:
             y0, y1 = unreported.pop(i)
@@ -644,10 +653,7 @@ def _worker_payload(integrator):
     The main process renders its share with the copy: pickling made CPython move the
     attributes of the originals into dictionaries, where every read is slower (renders
     took 10% longer); the unpickled copy keeps the compact layout."""
-    trace = sys.gettrace()
-    tracer_module = getattr(trace, "__module__", None) or type(trace).__module__
-    if "debugpy" in sys.modules or "pydevd" in sys.modules or (
-            trace is not None and not tracer_module.startswith("coverage")):
+    if debugger_attached():
         return None, None, "a debugger is attached (so that breakpoints in compute_color work)"
     if multiprocessing.current_process().daemon:
         return None, None, ("this process is itself a daemonic worker process (of a "
@@ -656,6 +662,8 @@ def _worker_payload(integrator):
     scene.rendered_image = None
     integrator = copy.copy(integrator)
     integrator.scene = scene
+    plain(scene)  # each process sets up its own accelerated queries
+    plain(integrator)
     try:
         payload = pickle.dumps(integrator)
         return payload, pickle.loads(payload), None
@@ -713,10 +721,11 @@ def _worker(payload, blocks, rows, shared, results):
     try:
         integrator = pickle.loads(payload)
         image = shared.image()
-        while (i := shared.take()) is not None:
-            y0, y1 = blocks[i]
-            image[y0:y1] = render_block(integrator, y0, y1, rows)
-            shared.finish(i)
+        with accelerated(integrator):
+            while (i := shared.take()) is not None:
+                y0, y1 = blocks[i]
+                image[y0:y1] = render_block(integrator, y0, y1, rows)
+                shared.finish(i)
         results.send(None)
     except BaseException as error:
         try:
