@@ -18,8 +18,6 @@ __all__ = _common_names + [
     "NormalIntegrator", "PhongIntegrator",
 ]
 
-INFINITY = float("inf")
-
 
 # ------------------------------------------------------------------------------------------
 # Integrator base class
@@ -186,29 +184,30 @@ class PhongIntegrator(Integrator):
                  intensity (x) BRDF.get_value(wi, wo, n) / r^2
 
     wi is the unit direction from p to the light, r its distance, wo the direction back
-    along the ray, (x) the per-channel product. A light is visible when no object lies
-    between p and the light; one behind the surface (n.wi <= 0) cannot contribute, so it
-    costs no shadow ray. There is no specular term."""
+    along the ray, (x) the per-channel product. A light is visible when nothing lies
+    between p and the light, which a shadow ray tells; a light behind the surface
+    (n.wi <= 0) lights nothing there. There is no specular term."""
 
     def __init__(self, filename_, experiment_name=""):
         super().__init__(filename_ + "_Phong", experiment_name)
 
     def compute_color(self, ray):
+        # ASSIGNMENT 1.4 BEGIN
         scene = self.scene
         hit = scene.closest_hit(ray)
         if not hit.has_hit:
             return BLACK
-        brdf = scene.object_list[hit.primitive_index].BRDF
-        if brdf is None:
-            raise ValueError(f"PhongIntegrator: object {hit.primitive_index} of the scene has "
-                             "no BRDF; call obj.set_BRDF(Lambertian(RGBColor(...))) on it")
-        kd, i_a = brdf.kd, scene.i_a
-        r, g, b = kd.r * i_a.r, kd.g * i_a.g, kd.b * i_a.b  # kd (x) i_a
-        wo, n = -ray.d, hit.normal
-        for light, wi, r2 in scene.visible_lights(hit):
-            f = brdf.get_value(wi, wo, n)
-            intensity = light.intensity
-            r += intensity.r * f.r / r2
-            g += intensity.g * f.g / r2
-            b += intensity.b * f.b / r2
-        return RGBColor(r, g, b)
+        brdf = scene.object_list[hit.primitive_index].get_BRDF()
+        color = brdf.kd.multiply(scene.i_a)  # the ambient term
+        wo = ray.d * -1.0
+        for light in scene.pointLights:
+            to_light = light.pos - hit.hit_point
+            if Dot(hit.normal, to_light) <= 0.0:
+                continue  # the light is behind the surface, or on it: no light here
+            r = Length(to_light)
+            wi = to_light / r
+            if not scene.any_hit(shadow_ray(hit, light.pos)):
+                f = brdf.get_value(wi, wo, hit.normal)
+                color = color + light.intensity.multiply(f) / (r * r)
+        return color
+        # ASSIGNMENT 1.4 END
