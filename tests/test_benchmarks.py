@@ -1,4 +1,5 @@
-"""benchmark.py: the measurement protocol and a quick run of the documented command."""
+"""benchmarks/: the measurement protocol, the flat loop and quick runs of the documented
+commands."""
 import time
 
 import pytest
@@ -6,8 +7,9 @@ import pytest
 import numpy as np
 
 from AppRenderer import cornell_box_scene, sphere_test_scene
-from benchmark import (Point, equal_time_error, flat_phong, paired_ratio, target_checks,
-                       time_renders)
+from benchmarks.accuracy import Point, equal_time_error, target_checks
+from benchmarks.flat_loop import flat_phong
+from benchmarks.timing import paired_ratio, time_renders
 from helpers import REPO, render_image, run_python
 from PyRT_Integrators import PhongIntegrator
 
@@ -85,17 +87,25 @@ def test_every_render_gets_an_integrator_of_its_own():
     assert [integrator.calls for integrator in made] == [[1], [2], [1], [2]]
 
 
-def test_quick_run_writes_the_speed_table_and_the_accuracy_plot(tmp_path):
-    result = run_python([REPO / "benchmark.py", "--size", "12", "--repeats", "1",
-                         "--accuracy-size", "8", "--samples", "1", "4",
-                         "--adaptive-samples", "4", "--reference-samples", "16",
-                         "--out", tmp_path], cwd=tmp_path)
+def test_quick_run_writes_the_speed_table_with_its_targets(tmp_path):
+    result = run_python(["-m", "benchmarks.speed", "--size", "12", "--repeats", "1",
+                         "--out", tmp_path], cwd=REPO)
     assert result.returncode == 0, result.stderr
     table = (tmp_path / "benchmark.md").read_text()
-    for row in ("Figure 1 | Phong | Cornell box", "Figure 3 | Intersection",
-                "StudentPhong | sphere scene", "StudentPhong | Cornell box"):
+    for row in ("| Figure 1 | Phong | Cornell box |", "| Figure 3 | Intersection |",
+                "|  | Phong, own code | Cornell box |", "|  | Phong, own code | sphere scene |"):
         assert row in table
     assert "| Flat loop (µs/pixel) | 1 process (µs/pixel) | 1 process / flat loop |" in table
+    assert "Phong, Cornell box, 1 process / flat loop: " in table
+    assert "(target at most 1.25: " in table and "(target at most 2.0: " in table
+    assert "| 1000 | " in table and "1000 tiles / 100 tiles: " in table
+
+
+def test_quick_run_writes_the_accuracy_tables_and_plot(tmp_path):
+    result = run_python(["-m", "benchmarks.accuracy", "--size", "8", "--repeats", "1",
+                         "--samples", "1", "4", "--adaptive-samples", "4",
+                         "--reference-samples", "16", "--out", tmp_path], cwd=REPO)
+    assert result.returncode == 0, result.stderr
     accuracy = (tmp_path / "speed_accuracy.md").read_text()
     assert "Phong, Cornell box (Figure 1) | uniform | 4 |" in accuracy
     assert "Phong, Cornell box (Figure 1) | adaptive | 4 |" in accuracy
@@ -135,4 +145,4 @@ def test_the_flat_loop_gives_the_image_render_gives(tmp_path, make):
     expected = render_image(PhongIntegrator(str(tmp_path / "img")), make(), workers=1)
     image = flat_phong(make())
     assert expected.any()
-    assert np.abs(image - expected).max() <= 1e-15
+    assert np.array_equal(image, expected)

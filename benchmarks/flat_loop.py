@@ -1,0 +1,160 @@
+"""The flat loop: the course's Phong image made with no objects per pixel and no calls.
+
+flat_phong renders Figures 1 and 5 (Phong on scenes of spheres and parallelograms lit by
+point lights) in one Python loop: plain floats, numpy only for each row's camera
+directions. It gives the image Integrator.render() gives, bit for bit, from the same
+numbers in the same order: Camera.row_directions' rays, the intersection formulas of
+PyRT_Core's primitives, Scene.closest_hit's strict tie rule, shadow_ray's offsets and the
+Phong sum of PhongIntegrator. It tests every object for every ray, where render() leaves
+out the objects a ray cannot reach, so it measures what the interpreter needs for the
+image: the speed table quotes the framework as a multiple of it. The intersection tests
+are written out for camera rays and for shadow rays alike, on purpose: a function for
+them would be a call per test, which is what this loop measures the framework without.
+"""
+from math import sqrt, tan
+
+import numpy as np
+
+from PyRT_Common import INFINITY, OFFSET_SCALE, SHADOW_EPSILON
+from PyRT_Core import EDGE_TOLERANCE, Parallelogram, Sphere
+
+
+def flat_phong(scene) -> np.ndarray:
+    """The Phong image of a scene of Spheres and Parallelograms with Lambertian BRDFs, as
+    PhongIntegrator renders it, made by one flat loop."""
+    camera, objects = scene.camera, []
+    for obj in scene.object_list:
+        kd = obj.BRDF.kd
+        if type(obj) is Sphere:
+            c = obj.origin
+            constants = (c.x, c.y, c.z, obj.radius)
+        elif type(obj) is Parallelogram:
+            n, p, a, b = obj.normal, obj.point, obj.coordinate_a, obj.coordinate_b
+            constants = (n.x, n.y, n.z, p.x, p.y, p.z, a.x, a.y, a.z, b.x, b.y, b.z)
+        else:
+            raise TypeError(f"flat_phong renders spheres and parallelograms, not {obj!r}")
+        objects.append((type(obj) is Sphere, constants, kd.r, kd.g, kd.b))
+    lights = [(light.pos.x, light.pos.y, light.pos.z, light.intensity.r, light.intensity.g,
+               light.intensity.b) for light in scene.pointLights]
+    ambient_r, ambient_g, ambient_b = scene.i_a.r, scene.i_a.g, scene.i_a.b
+    low, high = -EDGE_TOLERANCE, 1.0 + EDGE_TOLERANCE
+    width, height = camera.width, camera.height
+    # Camera.row_directions: (px, py, -1) * (1 / |(px, py, -1)|), a whole row at once
+    scale_y = tan(camera.vertical_fov / 2.0)
+    scale_x = scale_y * camera.aspect_ratio
+    screen_x = np.array([(2.0 * (x + 0.5) / width - 1.0) * scale_x for x in range(width)])
+    image = np.zeros((height, width, 3))
+    for y in range(height):
+        screen_y = (1.0 - 2.0 * (y + 0.5) / height) * scale_y
+        inverse = 1.0 / np.sqrt(screen_x * screen_x + screen_y * screen_y + 1.0)
+        row = []
+        for dx, dy, dz in zip((screen_x * inverse).tolist(), (screen_y * inverse).tolist(),
+                              (-inverse).tolist()):
+            # The nearest hit of the camera ray from the origin, t in [0, infinity]; a later
+            # object must be strictly nearer.
+            t_max, nearest = INFINITY, None
+            for sphere, k, kr, kg, kb in objects:
+                if sphere:
+                    cx, cy, cz, r = k
+                    fx, fy, fz = (0.0 - cx) / r, (0.0 - cy) / r, (0.0 - cz) / r
+                    b = fx * dx + fy * dy + fz * dz
+                    ax, ay, az = fx - dx * b, fy - dy * b, fz - dz * b
+                    disc = 1.0 - (ax * ax + ay * ay + az * az)
+                    if disc < 0.0:
+                        continue
+                    f = sqrt(fx * fx + fy * fy + fz * fz)
+                    if b > 0.0:
+                        q = -b - sqrt(disc)
+                        t0, t1 = q * r, (f - 1.0) * ((f + 1.0) / q) * r
+                    else:
+                        q = sqrt(disc) - b
+                        t0, t1 = (f - 1.0) * ((f + 1.0) / q) * r, q * r
+                    if 0.0 <= t0 <= t_max:
+                        t = t0
+                    elif 0.0 <= t1 <= t_max:
+                        t = t1
+                    else:
+                        continue
+                else:
+                    nx, ny, nz, px, py, pz, uax, uay, uaz, ubx, uby, ubz = k
+                    den = dx * nx + dy * ny + dz * nz
+                    if den == 0.0:
+                        continue
+                    t = (nx * (px - 0.0) + ny * (py - 0.0) + nz * (pz - 0.0)) / den
+                    if not 0.0 <= t <= t_max:
+                        continue
+                    qx, qy, qz = 0.0 + dx * t - px, 0.0 + dy * t - py, 0.0 + dz * t - pz
+                    if not (low <= qx * uax + qy * uay + qz * uaz <= high
+                            and low <= qx * ubx + qy * uby + qz * ubz <= high):
+                        continue
+                if nearest is None or t < t_max:
+                    nearest, t_max = (sphere, k, kr, kg, kb), t
+            if nearest is None:
+                row += (0.0, 0.0, 0.0)
+                continue
+            sphere, k, kr, kg, kb = nearest
+            t = t_max
+            if sphere:  # the point along the outward normal, one radius from the centre
+                cx, cy, cz, r = k
+                vx, vy, vz = (0.0 + dx * t - cx) / r, (0.0 + dy * t - cy) / r, (0.0 + dz * t - cz) / r
+                inverse_length = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
+                nx, ny, nz = vx * inverse_length, vy * inverse_length, vz * inverse_length
+                px, py, pz = cx + nx * r, cy + ny * r, cz + nz * r
+            else:  # the point on the ray, the normal facing the ray
+                nx, ny, nz = k[:3]
+                if dx * nx + dy * ny + dz * nz > 0.0:
+                    nx, ny, nz = nx * -1.0, ny * -1.0, nz * -1.0
+                px, py, pz = 0.0 + dx * t, 0.0 + dy * t, 0.0 + dz * t
+            red, green, blue = kr * ambient_r, kg * ambient_g, kb * ambient_b
+            offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + t)
+            ox, oy, oz = px + nx * offset, py + ny * offset, pz + nz * offset
+            for lx, ly, lz, ir, ig, ib in lights:
+                tx, ty, tz = lx - px, ly - py, lz - pz
+                if nx * tx + ny * ty + nz * tz <= 0.0:
+                    continue  # the light is behind the surface
+                r = sqrt(tx * tx + ty * ty + tz * tz)
+                # The shadow ray: from just above the surface towards the light
+                wx, wy, wz = lx - ox, ly - oy, lz - oz
+                distance = sqrt(wx * wx + wy * wy + wz * wz)
+                wx, wy, wz = wx / distance, wy / distance, wz / distance
+                s_min, s_max = offset, distance * (1.0 - SHADOW_EPSILON)
+                for sphere, k, _, _, _ in objects:  # against every object
+                    if sphere:
+                        cx, cy, cz, sr = k
+                        fx, fy, fz = (ox - cx) / sr, (oy - cy) / sr, (oz - cz) / sr
+                        b = fx * wx + fy * wy + fz * wz
+                        ax, ay, az = fx - wx * b, fy - wy * b, fz - wz * b
+                        disc = 1.0 - (ax * ax + ay * ay + az * az)
+                        if disc < 0.0:
+                            continue
+                        f = sqrt(fx * fx + fy * fy + fz * fz)
+                        if b > 0.0:
+                            q = -b - sqrt(disc)
+                            t0, t1 = q * sr, (f - 1.0) * ((f + 1.0) / q) * sr
+                        else:
+                            q = sqrt(disc) - b
+                            t0, t1 = (f - 1.0) * ((f + 1.0) / q) * sr, q * sr
+                        if s_min <= t0 <= s_max or s_min <= t1 <= s_max:
+                            break
+                    else:
+                        snx, sny, snz, spx, spy, spz, uax, uay, uaz, ubx, uby, ubz = k
+                        den = wx * snx + wy * sny + wz * snz
+                        if den == 0.0:
+                            continue
+                        ts = (snx * (spx - ox) + sny * (spy - oy) + snz * (spz - oz)) / den
+                        if not s_min <= ts <= s_max:
+                            continue
+                        qx, qy, qz = ox + wx * ts - spx, oy + wy * ts - spy, oz + wz * ts - spz
+                        if (low <= qx * uax + qy * uay + qz * uaz <= high
+                                and low <= qx * ubx + qy * uby + qz * ubz <= high):
+                            break
+                else:  # nothing in the way: the Lambertian kd * cos, over r^2
+                    cos_theta = nx * (tx / r) + ny * (ty / r) + nz * (tz / r)
+                    if cos_theta > 0.0:
+                        rr = r * r
+                        red += ir * (kr * cos_theta) / rr
+                        green += ig * (kg * cos_theta) / rr
+                        blue += ib * (kb * cos_theta) / rr
+            row += (red, green, blue)
+        image[y] = np.array(row).reshape(-1, 3)
+    return image
