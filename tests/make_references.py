@@ -18,14 +18,22 @@ the sampling shows as an error that no number of samples removes.
 
     cornell_phong_32x32_1024spp.npy
 
+Given the folder of the course's own renders (the course framework's images of Figures 1,
+3, 4 and 5, as linear .npz files), it also stores the course's Figure 1 on its seams, the
+pixels within SEAM_BAND of the image's diagonals, where the Cornell box's walls meet:
+what test_acceleration.py checks PyRT's Figure 1 against.
+
+    course_figure1_seams.npz      arrays y, x and rgb (float64) of those pixels
+
 Regenerate them only when an intended change alters the course images, never to make a
 failing test pass; look at every new image before committing it, and give the reason for
 the change in the commit message.
 
 Run it from the repository's root folder:
 
-    python tests/make_references.py
+    python tests/make_references.py [--course-renders ../shared/course-renders]
 """
+import argparse
 import shutil
 import sys
 import tempfile
@@ -37,6 +45,8 @@ REPO = TESTS.parent
 if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))
 
+import numpy as np  # noqa: E402
+
 import AppRenderer  # noqa: E402  (needs the repository on the import path first)
 from PyRT_Compare import REFERENCE_DIR, REFERENCE_SIZE as SIZE  # noqa: E402
 from PyRT_Integrators import PhongIntegrator  # noqa: E402
@@ -46,6 +56,8 @@ SAMPLED_REFERENCE_SIZE = 32
 SAMPLED_REFERENCE_SAMPLES = 1024
 SAMPLED_REFERENCE = REFERENCE_DIR / "cornell_phong_{0}x{0}_{1}spp.npy".format(
     SAMPLED_REFERENCE_SIZE, SAMPLED_REFERENCE_SAMPLES)
+COURSE_SEAMS = REFERENCE_DIR / "course_figure1_seams.npz"
+SEAM_BAND = 3  # pixels either side of the diagonals
 
 
 class Figure(NamedTuple):
@@ -85,7 +97,22 @@ def render_sampled_reference(folder):
     return Path(integrator.get_filename() + ".npy")
 
 
-def main():
+def write_course_seams(course_renders):
+    """Stores the pixels of the course's Figure 1 (figure1_phong.npz in the folder
+    course_renders) within SEAM_BAND of the diagonals x = y and x = SIZE - 1 - y."""
+    course = np.load(Path(course_renders) / "figure1_phong.npz")["image"]
+    y, x = np.mgrid[0:SIZE, 0:SIZE]
+    band = (np.abs(x - y) <= SEAM_BAND) | (np.abs(x + y - (SIZE - 1)) <= SEAM_BAND)
+    np.savez_compressed(COURSE_SEAMS, y=y[band], x=x[band], rgb=course[band])
+    print(f"Wrote {COURSE_SEAMS.relative_to(REPO)}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description="Render the reference images of the tests.")
+    parser.add_argument("--course-renders", type=Path,
+                        help="the folder of the course's own renders: also store the seams "
+                             "of its Figure 1")
+    args = parser.parse_args(argv)
     REFERENCE_DIR.mkdir(exist_ok=True)
     with tempfile.TemporaryDirectory() as folder:
         for figure in FIGURES:
@@ -93,6 +120,8 @@ def main():
             print(f"Wrote {figure.reference.relative_to(REPO)}")
         shutil.copyfile(render_sampled_reference(folder), SAMPLED_REFERENCE)
         print(f"Wrote {SAMPLED_REFERENCE.relative_to(REPO)}")
+    if args.course_renders:
+        write_course_seams(args.course_renders)
 
 
 if __name__ == "__main__":
