@@ -14,6 +14,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from AppRenderer import cornell_box_scene
+import PyRT_Acceleration
 from PyRT_Core import *
 from PyRT_Integrators import *
 
@@ -114,3 +115,51 @@ class PixelGrey(Integrator):
         self.calls += 1
         g = self.grey(*pixel_of(ray, self.scene.camera))
         return RGBColor(g, g, g)
+
+
+class StudentPhongIntegrator(Integrator):
+    """Phong written the way a student writes it from the assignment, with PyRT's vector
+    and colour classes and a shadow ray of its own (Ray(hit point, wi, distance))."""
+
+    def __init__(self, filename_, experiment_name=""):
+        super().__init__(filename_ + "_StudentPhong", experiment_name)
+
+    def compute_color(self, ray):
+        hit_data = self.scene.closest_hit(ray)
+        if not hit_data.has_hit:
+            return BLACK
+        hit_point = hit_data.hit_point
+        normal = hit_data.normal
+        brdf = self.scene.object_list[hit_data.primitive_index].get_BRDF()
+        wo = ray.d * -1.0
+        color = brdf.kd.multiply(self.scene.i_a)
+        for light in self.scene.pointLights:
+            to_light = light.pos - hit_point
+            distance = Length(to_light)
+            wi = Normalize(to_light)
+            shadow_ray = Ray(hit_point, wi, distance)
+            if not self.scene.any_hit(shadow_ray):
+                light_color = light.intensity.multiply(brdf.get_value(wi, wo, normal))
+                color = color + light_color / (distance * distance)
+        return color
+
+
+def visible_lights(scene, hit):
+    """The point lights that light the point of hit (a HitData) as PhongIntegrator decides
+    it: each light in front of the surface, n . (pos - p) > 0, whose shadow_ray meets
+    nothing, as (light, wi, r2), wi the unit direction to the light and r2 its squared
+    distance. The scene's own any_hit and PyRT_Acceleration's decide alike, or the test
+    fails."""
+    fast = PyRT_Acceleration.AcceleratedQueries(scene)
+    seen = []
+    for light in scene.pointLights:
+        to_light = light.pos - hit.hit_point
+        if Dot(hit.normal, to_light) <= 0.0:
+            continue
+        ray = shadow_ray(hit, light.pos)
+        blocked = scene.any_hit(ray)
+        assert fast.any_hit(ray) == blocked, f"the fast any_hit differs for {ray!r}"
+        if not blocked:
+            r = Length(to_light)
+            seen.append((light, to_light / r, r * r))
+    return seen
