@@ -147,6 +147,63 @@ def test_cornell_box_area_light_is_a_square_under_the_ceiling():
 
 
 # ------------------------------------------------------------------------------------------
+# The 2025-26 handout's sphere_scene(envMap=None)
+# ------------------------------------------------------------------------------------------
+def write_env_map(path):
+    """Writes a 1 x 2 latitude-longitude map at path: left texel red (2, 0, 0), right texel
+    blue (0, 0, 4)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    cv2.imwrite(str(path), np.array([[[0, 0, 2], [4, 0, 0]]], dtype=np.float32))  # BGR
+
+
+@pytest.fixture(scope="module")
+def sphere_test_scene_phong(tmp_path_factory):
+    """Phong on sphere_test_scene() at its own 500 x 500 pixels: the objects, their
+    materials, the light, the ambient light and the camera all show in this image."""
+    folder = tmp_path_factory.mktemp("sphere_test_scene")
+    return render_image(PhongIntegrator(str(folder / "img")), sphere_test_scene())
+
+
+@pytest.mark.parametrize("make_scene", [lambda: AppRenderer.sphere_scene(),
+                                        lambda: AppRenderer.sphere_scene(envMap=None)],
+                         ids=["sphere_scene()", "sphere_scene(envMap=None)"])
+def test_sphere_scene_renders_the_image_of_sphere_test_scene(tmp_path, make_scene,
+                                                             sphere_test_scene_phong):
+    scene = make_scene()
+    assert scene.env_map is None
+    image = render_image(PhongIntegrator(str(tmp_path / "img")), scene)
+    assert image.shape == (500, 500, 3)
+    assert np.array_equal(image, sphere_test_scene_phong)
+
+
+def test_sphere_scene_sets_the_environment_map_at_a_path_from_the_script_folder(
+        tmp_path, monkeypatch):
+    write_env_map(tmp_path / "env_maps" / "arch_nozero.hdr")
+    monkeypatch.chdir(tmp_path)  # the handout's relative path, from the student's folder
+    scene = AppRenderer.sphere_scene(envMap="env_maps/arch_nozero.hdr", width=20, height=20)
+    assert scene.env_map.image.tolist() == [[[2, 0, 0], [0, 0, 4]]]
+    # the rest is the sphere scene: Phong, which never looks at the map, sees no difference
+    expected = render_image(PhongIntegrator(str(tmp_path / "expected")),
+                            sphere_test_scene(width=20, height=20))
+    assert np.array_equal(render_image(PhongIntegrator(str(tmp_path / "img")), scene),
+                          expected)
+
+
+@pytest.mark.parametrize("relative", [True, False], ids=["relative", "absolute"])
+def test_sphere_scene_refuses_a_missing_environment_map_naming_its_path(tmp_path,
+                                                                       monkeypatch,
+                                                                       relative):
+    monkeypatch.chdir(tmp_path)
+    missing = (tmp_path / "env_maps" / "arch_nozero.hdr").resolve()
+    given = "env_maps/arch_nozero.hdr" if relative else str(missing)
+    with pytest.raises(FileNotFoundError) as error:
+        AppRenderer.sphere_scene(given)  # the handout's first argument, envMap
+    message = str(error.value)
+    assert repr(str(missing)) in message
+    assert "latitude-longitude .hdr image" in message
+
+
+# ------------------------------------------------------------------------------------------
 # Running the script
 # ------------------------------------------------------------------------------------------
 OPTIONS = ["--integrator", "--scene", "--width", "--height", "--max-depth", "--out",
