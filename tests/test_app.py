@@ -22,7 +22,7 @@ from matplotlib.backend_bases import ResizeEvent
 import AppRenderer
 from AppRenderer import cornell_box_scene, sphere_test_scene
 from helpers import APP, REPO, render_image, run_python
-from PyRT_Compare import REFERENCE_DIR
+from PyRT_Compare import REFERENCE_DIR, compare_with_reference
 from PyRT_Rendering import ADAPTIVE_TOLERANCE
 from PyRT_Core import Parallelogram, Sphere
 from PyRT_Integrators import (DepthIntegrator, IntersectionIntegrator, Integrator,
@@ -201,6 +201,22 @@ def test_sphere_scene_refuses_a_missing_environment_map_naming_its_path(tmp_path
     message = str(error.value)
     assert repr(str(missing)) in message
     assert "latitude-longitude .hdr image" in message
+
+
+def test_a_2025_26_student_script_runs_unchanged_and_renders_figure_3(tmp_path):
+    # tests/student/render_2025_26.py imports sphere_scene, builds its rays with
+    # Ray(direction=...) in its own loop over x and then y, and saves to the handout's
+    # '.\\out\\' + 'rendered_image', which names the folder out on Windows and, on Linux
+    # and macOS, a file of the current folder whose name holds the backslashes. Either
+    # way the script reads its PNG back by the same name.
+    shutil.copy(REPO / "tests" / "student" / "render_2025_26.py", tmp_path)
+    write_env_map(tmp_path / "env_maps" / "arch_nozero.hdr")
+    result = run_python(["render_2025_26.py"], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    png = tmp_path / ".\\out\\rendered_image_Intersection.png"
+    assert "Read back .\\out\\rendered_image_Intersection.png: (500, 500, 3)" in result.stdout
+    assert "Progress: 100%" in result.stdout
+    assert compare_with_reference(png, "figure3_intersection").matches
 
 
 # ------------------------------------------------------------------------------------------
