@@ -96,16 +96,28 @@ def test_sphere_test_scene_area_light_replaces_the_point_light():
     assert rgb(light.get_BRDF().kd) == (0, 0, 0)
 
 
-def test_sphere_test_scene_environment_map_is_the_one_next_to_the_script(monkeypatch,
-                                                                         tmp_path):
-    assert Path(AppRenderer.ENV_MAP_PATH) == REPO / "env_maps" / "environment.hdr"
-    # a 1 x 2 map in its place: left texel red, right texel blue (OpenCV stores BGR)
+def test_sphere_test_scene_environment_map_is_the_one_at_env_map_path(monkeypatch,
+                                                                       tmp_path):
+    # a 1 x 2 map there: left texel red, right texel blue (OpenCV stores BGR)
     env_map = tmp_path / "environment.hdr"
     cv2.imwrite(str(env_map), np.array([[[0, 0, 2], [4, 0, 0]]], dtype=np.float32))
     monkeypatch.setattr(AppRenderer, "ENV_MAP_PATH", str(env_map))
     scene = AppRenderer.sphere_test_scene(use_env_map=True)
     assert scene.env_map.image.tolist() == [[[2, 0, 0], [0, 0, 4]]]
     assert AppRenderer.sphere_test_scene().env_map is None
+
+
+def test_sphere_test_scene_without_its_environment_map_names_the_missing_file(monkeypatch,
+                                                                              tmp_path):
+    # PyRT ships no map, and no Practice 1 scene needs one: use_env_map=True without a
+    # file at ENV_MAP_PATH stops where the scene is made, naming the file to put there
+    missing = tmp_path / "env_maps" / "environment.hdr"
+    monkeypatch.setattr(AppRenderer, "ENV_MAP_PATH", str(missing))
+    with pytest.raises(FileNotFoundError) as error:
+        AppRenderer.sphere_test_scene(use_env_map=True)
+    message = str(error.value)
+    assert repr(str(missing.resolve())) in message
+    assert "latitude-longitude .hdr image" in message
 
 
 def test_cornell_box_scene_has_the_course_numbers():
