@@ -225,10 +225,10 @@ def test_a_2025_26_student_script_runs_unchanged_and_renders_figure_3(tmp_path):
     write_env_map(tmp_path / "env_maps" / "arch_nozero.hdr")
     result = run_python(["render_2025_26.py"], cwd=tmp_path)
     assert result.returncode == 0, result.stderr
-    png = tmp_path / ".\\out\\rendered_image_Intersection.png"
-    assert "Read back .\\out\\rendered_image_Intersection.png: (500, 500, 3)" in result.stdout
+    name = ".\\out\\rendered_image_Intersection.png"  # DIRECTORY + FILENAME + suffix
+    assert f"Read back {name}: (500, 500, 3)" in result.stdout
     assert "Progress: 100%" in result.stdout
-    assert compare_with_reference(png, "figure3_intersection").matches
+    assert compare_with_reference(tmp_path / name, "figure3_intersection").matches
 
 
 # ------------------------------------------------------------------------------------------
