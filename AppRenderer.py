@@ -26,7 +26,8 @@ ENV_MAP_PATH = str(Path(__file__).resolve().parent / "env_maps" / "environment.h
 # Scenes
 # ------------------------------------------------------------------------------------------
 def sphere_test_scene(areaLS=False, use_env_map=False, width=500, height=500):
-    """A grey sphere above a green floor, lit by one point light (Figures 2 to 5)."""
+    """A grey sphere above a green floor, lit by one point light (Figures 2 to 5), under
+    the 2023-24 handout's name; sphere_scene is the same scene under the 2025-26 one."""
     scene = Scene()
     scene.set_ambient(RGBColor(0.5, 0.5, 0.5))
 
@@ -51,6 +52,18 @@ def sphere_test_scene(areaLS=False, use_env_map=False, width=500, height=500):
         scene.set_environment_map(ENV_MAP_PATH)
 
     scene.set_camera(Camera(width, height, 60))
+    return scene
+
+
+def sphere_scene(envMap=None, *, width=500, height=500):
+    """The sphere scene of Figures 2 to 5 under the name the 2025-26 handout gives it: the
+    scene of sphere_test_scene, lit by its point light. envMap, when given, is the path of
+    a latitude-longitude .hdr image set as the scene's environment map; a relative path
+    starts from the folder the script runs in, and a file that is not there is refused
+    here, with the path in the message."""
+    scene = sphere_test_scene(width=width, height=height)
+    if envMap is not None:
+        scene.set_environment_map(envMap)
     return scene
 
 
