@@ -7,14 +7,11 @@ ray whose direction is not of unit length hits the same point at the same distan
 normalised version. (During a render, PyRT_Acceleration answers the same queries faster,
 with the same answers, whenever the scene is made of PyRT's own classes.)
 """
-import os
-import threading
-from concurrent.futures import ThreadPoolExecutor
 from math import isfinite, tan
-from pathlib import Path
 
 from PyRT_Common import *
 from PyRT_Common import _restore_state, check_constants
+from PyRT_Images import write_image_files
 
 # A ray direction whose squared length is this close to 1 is used as it is; anything else
 # is normalised first (a normalised vector is only of unit length to within rounding).
@@ -184,72 +181,7 @@ class Scene:
             raise RuntimeError("Scene.save_image: the scene has no image yet; call "
                                "scene.set_camera(camera) and render first")
         check_constants("Scene.save_image")
-        base = Path(full_filename)
-        base.parent.mkdir(parents=True, exist_ok=True)
-        # The linear files are written on a second thread meanwhile: the encoders, numpy's
-        # arithmetic and the writes all run without holding Python's global lock.
-        with ThreadPoolExecutor(1) as pool:
-            linear = pool.submit(_write_linear_files, image, base)
-            display = tonemap_image(image) if tonemap else np.clip(np.nan_to_num(image), 0, 1)
-            # 8 bits as matplotlib makes them from floats, floor(255 v); zlib's fastest
-            # level writes twice as fast for a slightly larger file.
-            pixels = np.multiply(display, 255.0, out=display).astype(np.uint8)
-            _write_atomically(_with_suffix(base, ".png"), lambda f: plt.imsave(
-                f, pixels, format="png", pil_kwargs={"compress_level": 1}))
-            linear.result()
-
-
-def tonemap_image(image, gamma=2.5):
-    """The course's display mapping, OpenCV's default tonemapper cv2.createTonemap(gamma):
-    the whole image (all pixels and channels) is mapped linearly so that its minimum becomes
-    0 and its maximum 1, raised to the power 1/gamma and clipped to [0, 1].
-
-    Unlike OpenCV it ignores non-finite values when it looks for the minimum and maximum,
-    so one NaN from a buggy integrator does not turn the whole picture black; NaN and -inf
-    pixels are shown as the minimum, +inf as the maximum."""
-    lo, hi = float(image.min()), float(image.max())  # NaN if any pixel is NaN
-    out = image
-    if not (isfinite(lo) and isfinite(hi)):
-        finite = np.isfinite(image)
-        if not finite.any():
-            return np.zeros(image.shape, np.float32)
-        lo, hi = float(image[finite].min()), float(image[finite].max())
-        out = np.nan_to_num(image, nan=lo, posinf=hi, neginf=lo)
-    if hi - lo > np.finfo(float).eps:  # OpenCV leaves a flat image as it is
-        out = np.subtract(out, lo)
-        out /= hi - lo
-    # The power in single precision, as OpenCV computes it (and twice as fast as double).
-    # Clipping straight into the single-precision array saves a temporary image.
-    display = np.clip(out, 0.0, 1.0, out=np.empty(image.shape, np.float32))
-    return np.power(display, np.float32(1.0 / gamma), out=display)
-
-
-def _write_linear_files(image, base):
-    """Writes the .npy and .hdr files of the linear image."""
-    ok, hdr = cv2.imencode(".hdr", np.ascontiguousarray(image[:, :, ::-1], np.float32))
-    if not ok:
-        raise RuntimeError("Scene.save_image: OpenCV could not encode the HDR image")
-    _write_atomically(_with_suffix(base, ".hdr"), lambda f: f.write(hdr))
-    _write_atomically(_with_suffix(base, ".npy"), lambda f: np.save(f, image))
-
-
-def _with_suffix(base, suffix):
-    return base.parent / (base.name + suffix)
-
-
-def _write_atomically(path, write):
-    """Calls write(file) on a temporary file that then replaces path, so that path is
-    always either the previous file or the new one, never half written. The temporary
-    file is created like any other file (readable by others, as the umask allows), where
-    tempfile.mkstemp would make it private to its owner."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}-{threading.get_ident()}.tmp")
-    try:
-        with open(tmp, "wb") as f:
-            write(f)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+        write_image_files(image, full_filename, tonemap)
 
 
 # ------------------------------------------------------------------------------------------

@@ -39,7 +39,7 @@ from tqdm import tqdm
 
 from PyRT_Acceleration import accelerated, debugger_attached, plain
 from PyRT_Common import RGBColor, Ray, Vector3D, check_constants, plt
-from PyRT_Core import _write_atomically, tonemap_image
+from PyRT_Images import display_image, write_atomically
 
 INFINITY = float("inf")
 # With workers=None, a render that one process would finish sooner than this stays in
@@ -400,7 +400,7 @@ class UniformSampling:
                       "strata; pixels that kept their centre ray count as exact",
         }
         path = Path(base + ACCURACY_SUFFIX)
-        _write_atomically(path, lambda f: f.write(json.dumps(accuracy, indent=2).encode()))
+        write_atomically(path, lambda f: f.write(json.dumps(accuracy, indent=2).encode()))
         share = f", {rmse / span:.2%} of its range" if span > 0.0 else ""
         print(f"Estimated error: RMSE {rmse:.2e} of the linear image{share}, from the spread "
               f"of each pixel's samples; saved in {path}")
@@ -432,10 +432,7 @@ class AdaptiveSampling(UniformSampling):
         start = time.perf_counter()
         yield RenderPass(_CourseRows(1), workers, self._keep_centre, " centre rays")
         seconds = time.perf_counter() - start
-        if integrator.tonemap:
-            display = tonemap_image(self.centre)
-        else:
-            display = np.clip(np.nan_to_num(self.centre), 0.0, 1.0)
+        display = display_image(self.centre, integrator.tonemap)
         self.refined = refined_pixels(display, self.tolerance)
         count = int(self.refined.sum())
         if count == 0:
@@ -462,7 +459,7 @@ class AdaptiveSampling(UniformSampling):
         rays = self.rays()
         count = int(self.refined.sum())
         path = integrator.get_filename() + SAMPLE_MAP_SUFFIX
-        _write_atomically(Path(path), lambda f: plt.imsave(
+        write_atomically(Path(path), lambda f: plt.imsave(
             f, rays, cmap=SAMPLE_MAP_COLORS, vmin=1, vmax=self.samples + 1, format="png"))
         print(f"Adaptive sampling: {count} of {rays.size} pixels ({count / rays.size:.1%}) "
               f"got {self.samples} rays after their centre ray, the others their centre ray "

@@ -10,7 +10,6 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import PyRT_Acceleration
-import PyRT_Core
 from AppRenderer import cornell_box_scene, sphere_test_scene
 from helpers import REPO, fov90_scene, render_image, small_cornell_box
 from PyRT_Acceleration import (AcceleratedPhong, AcceleratedQueries, accelerated,

@@ -1,0 +1,224 @@
+"""PyRT_Images.py: the three files of a saved image, written whole, and the course's
+tonemapper against OpenCV's."""
+import os
+import stat
+
+import cv2
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+import PyRT_Images
+from helpers import PNG_TOLERANCE, read_png
+from PyRT_Core import Camera, Scene
+
+
+# ------------------------------------------------------------------------------------------
+# Saving images
+# ------------------------------------------------------------------------------------------
+def scene_with_image(image):
+    scene = Scene()
+    height, width = image.shape[:2]
+    scene.set_camera(Camera(width, height, 60))
+    scene.rendered_image[...] = image
+    return scene
+
+
+def sample_image():
+    image = np.random.default_rng(7).uniform(0.05, 4.0, size=(5, 6, 3))
+    image[0, 0] = (5.0, 0.0, 0.0)   # pure red: a swapped channel order shows up here
+    image[4, 5] = (0.0, 0.0, 0.25)  # pure blue
+    return image
+
+
+@pytest.fixture
+def saved(tmp_path):
+    image = sample_image()
+    base = tmp_path / "new" / "folder" / "picture"
+    scene_with_image(image).save_image(str(base))
+    return image, base
+
+
+def test_save_image_creates_missing_folders_and_three_files(saved):
+    _, base = saved
+    for suffix in (".png", ".npy", ".hdr"):
+        assert base.with_name(base.name + suffix).is_file()
+
+
+def test_saved_npy_is_exactly_the_rendered_image(saved):
+    image, base = saved
+    np.testing.assert_array_equal(np.load(str(base) + ".npy"), image)
+
+
+def test_saved_hdr_is_rgb_float_within_rgbe_precision(saved):
+    image, base = saved
+    bgr = cv2.imread(str(base) + ".hdr", cv2.IMREAD_ANYDEPTH | cv2.IMREAD_COLOR)
+    assert bgr.dtype == np.float32 and bgr.shape == image.shape
+    read = cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB)
+    # RGBE keeps 8 bits of mantissa under the largest channel of each pixel
+    tolerance = image.max(axis=2, keepdims=True) / 128
+    assert np.all(np.abs(read - image) <= tolerance)
+    assert read[0, 0, 0] == pytest.approx(5.0, rel=1e-2) and read[0, 0, 2] == 0.0
+    assert read[4, 5, 2] == pytest.approx(0.25, rel=1e-2) and read[4, 5, 0] == 0.0
+
+
+def test_saved_png_is_the_tonemapped_image(saved):
+    image, base = saved
+    png = plt.imread(str(base) + ".png")
+    assert png.shape[:2] == image.shape[:2]
+    expected = PyRT_Images.tonemap_image(image)
+    np.testing.assert_allclose(png[:, :, :3], expected, atol=1.01 / 255)
+
+
+def test_saved_png_without_tonemapping_shows_the_linear_values_clipped_to_0_1(tmp_path):
+    # as Figure 2's: v in [0, 1] as floor(255 v) / 255, below 0 black, above 1 white
+    image = np.array([[[-0.5, 0.5, 2.0], [0.2, -3.0, 1.5]]])
+    scene_with_image(image).save_image(str(tmp_path / "picture"), tonemap=False)
+    expected = np.array([[[0.0, 127.0, 255.0], [51.0, 0.0, 255.0]]]) / 255.0
+    assert read_png(tmp_path / "picture.png") == pytest.approx(expected, abs=1e-6)
+
+
+def test_save_image_before_set_camera_says_to_set_the_camera_and_render(tmp_path):
+    with pytest.raises(RuntimeError, match=r"^Scene\.save_image: the scene has no image yet; "
+                                           r"call scene\.set_camera\(camera\) and render "
+                                           r"first$"):
+        Scene().save_image(str(tmp_path / "image"))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_save_image_says_when_opencv_cannot_encode_the_hdr_file(tmp_path, monkeypatch):
+    monkeypatch.setattr(PyRT_Images.cv2, "imencode", lambda *args: (False, None))
+    with pytest.raises(RuntimeError, match=r"^Scene\.save_image: OpenCV could not encode the "
+                                           r"HDR image$"):
+        scene_with_image(sample_image()).save_image(str(tmp_path / "image"))
+    assert not (tmp_path / "image.hdr").exists()
+
+
+def test_save_image_overwrites_previous_files(tmp_path):
+    base = str(tmp_path / "picture")
+    scene_with_image(np.ones((2, 2, 3))).save_image(base)
+    scene_with_image(np.full((2, 2, 3), 3.0)).save_image(base)
+    np.testing.assert_array_equal(np.load(base + ".npy"), np.full((2, 2, 3), 3.0))
+
+
+def test_save_image_leaves_no_temporary_files(tmp_path):
+    scene_with_image(np.ones((2, 2, 3))).save_image(str(tmp_path / "picture"))
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "picture.hdr", "picture.npy", "picture.png"]
+
+
+@pytest.mark.skipif(os.name == "nt", reason="Windows has no umask permission bits")
+def test_saved_files_are_readable_by_others_as_the_umask_allows(tmp_path):
+    previous = os.umask(0o022)
+    try:
+        scene_with_image(np.ones((2, 2, 3))).save_image(str(tmp_path / "picture"))
+    finally:
+        os.umask(previous)
+    for path in tmp_path.iterdir():
+        assert stat.S_IMODE(path.stat().st_mode) == 0o644, path.name
+
+
+def test_failed_save_keeps_the_previous_file_whole(tmp_path, monkeypatch):
+    base = str(tmp_path / "picture")
+    scene_with_image(np.ones((2, 2, 3))).save_image(base)
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+
+    def crash(source, target):  # the machine stops between writing and renaming
+        raise OSError("disk full")
+
+    monkeypatch.setattr(PyRT_Images.os, "replace", crash)
+    with pytest.raises(OSError, match="disk full"):
+        scene_with_image(np.full((2, 2, 3), 3.0)).save_image(base)
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
+
+
+def test_save_that_cannot_create_its_file_reports_that_error_alone(tmp_path, monkeypatch):
+    def cannot_create(path, mode):  # no temporary file comes to exist
+        raise OSError("too many open files")
+
+    monkeypatch.setattr(PyRT_Images, "open", cannot_create, raising=False)
+    with pytest.raises(OSError, match="too many open files") as error:
+        scene_with_image(np.ones((2, 2, 3))).save_image(str(tmp_path / "picture"))
+    assert error.value.__context__ is None  # no second error from cleaning up
+    assert list(tmp_path.iterdir()) == []
+
+
+# ------------------------------------------------------------------------------------------
+# Tonemapping
+# ------------------------------------------------------------------------------------------
+def test_tonemap_agrees_with_opencv_default_tonemapper():
+    image = np.random.default_rng(3).uniform(0.0, 20.0, size=(16, 12, 3)).astype(np.float32)
+    opencv = cv2.createTonemap(gamma=2.5).process(image.copy())
+    # OpenCV maps the minimum to a tiny negative number and returns its power as NaN; the
+    # course clips the result to [0, 1], which makes that pixel 0
+    expected = np.clip(np.nan_to_num(opencv, nan=0.0), 0.0, 1.0)
+    np.testing.assert_allclose(PyRT_Images.tonemap_image(image), expected, atol=1e-3)
+
+
+def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
+    image = np.array([[[2.0, 3.0, 6.0], [4.0, 2.5, 5.0]]])
+    out = PyRT_Images.tonemap_image(image)
+    assert out[0, 0, 0] == 0.0 and out[0, 0, 2] == pytest.approx(1.0, abs=1e-15)
+    # 4 -> (4 - 2)/(6 - 2) = 0.5, then 0.5 ** (1/2.5), in single precision as in OpenCV
+    assert out[0, 1, 0] == pytest.approx(0.5 ** 0.4, rel=1e-6)
+
+
+@pytest.mark.parametrize("image", [
+    np.full((1, 2, 3), 0.25, np.float32),                   # flat: left as it is, 0.25 ** 0.4
+    np.array([[[0.0, 2.0 ** -52, 0.0]]], np.float32),       # max - min = DBL_EPSILON: flat
+    np.array([[[0.0, 2.0 ** -51, 0.0]]], np.float32),       # twice that: stretched to [0, 1]
+    np.array([[[-3.0, 1.0, -1.0]]], np.float32),            # below zero: -3 -> 0, -1 -> 0.5
+], ids=["flat", "flat-to-epsilon", "just-not-flat", "negative"])
+def test_tonemap_agrees_with_opencv_on_flat_and_negative_images(image):
+    opencv = cv2.createTonemap(gamma=2.5).process(image.copy())
+    np.testing.assert_allclose(PyRT_Images.tonemap_image(image), opencv, rtol=1e-6, atol=1e-7)
+
+
+@pytest.mark.parametrize("value, shown", [(4.0, 1.0), (-0.5, 0.0)])
+def test_tonemap_shows_a_flat_image_outside_0_to_1_clipped(value, shown):
+    # OpenCV leaves a flat image as it is; the course clips the result to [0, 1]
+    assert (PyRT_Images.tonemap_image(np.full((2, 1, 3), value)) == shown).all()
+
+
+def test_tonemap_shows_nan_as_darkest_in_an_image_below_zero():
+    # finite values from -3 to 1: NaN and -inf are shown as -3, 0; +inf as 1, 1
+    image = np.array([[[-3.0, 1.0, np.nan], [-1.0, -np.inf, np.inf]]])
+    assert PyRT_Images.tonemap_image(image) == pytest.approx(
+        np.array([[[0.0, 1.0, 0.0], [0.5 ** 0.4, 0.0, 1.0]]]), rel=1e-6)
+
+
+@pytest.mark.parametrize("image", [
+    np.array([[[2.0, 3.0, 6.0]]]),               # a linear image, in double precision
+    np.full((1, 2, 3), 4.0),                      # flat: left as it is
+    np.array([[[np.nan, np.inf, -np.inf]]]),      # nothing finite: all black
+], ids=["linear", "flat", "not-finite"])
+def test_tonemap_gives_single_precision_as_opencv_does(image):
+    # cv2.createTonemap().process returns float32, whatever the image holds
+    assert PyRT_Images.tonemap_image(image).dtype == np.float32
+
+
+def with_non_finite(a, b, c):
+    """A 2 x 2 image whose finite values run from 1 to 3, with a, b and c in three of its
+    channels, and what the tonemapper shows: finite v as ((v - 1)/(3 - 1)) ** (1/2.5), in
+    single precision as in OpenCV; +inf as 1, the brightest; NaN and -inf as 0, the
+    darkest."""
+    image = np.array([[[1.0, 2.0, 3.0], [2.5, 1.5, 3.0]],
+                      [[a, 2.0, b], [c, 1.0, 3.0]]])
+    finite = np.isfinite(image)
+    shown = np.where(np.isposinf(image), 1.0, 0.0)
+    shown[finite] = ((image[finite] - 1.0) / 2.0) ** 0.4
+    return image, shown
+
+
+@pytest.mark.parametrize("bad", [(np.nan,) * 3, (np.inf,) * 3, (-np.inf,) * 3,
+                                 (np.inf, -np.inf, np.nan)],
+                         ids=["nan", "inf", "-inf", "all"])
+def test_tonemap_shows_inf_as_brightest_and_nan_or_minus_inf_as_darkest(bad):
+    image, shown = with_non_finite(*bad)
+    np.testing.assert_allclose(PyRT_Images.tonemap_image(image), shown, rtol=1e-6, atol=1e-7)
+
+
+def test_saved_png_shows_inf_as_brightest_and_nan_or_minus_inf_as_darkest(tmp_path):
+    image, shown = with_non_finite(np.inf, -np.inf, np.nan)
+    scene_with_image(image).save_image(str(tmp_path / "picture"))
+    assert np.abs(read_png(tmp_path / "picture.png") - shown).max() <= PNG_TOLERANCE
