@@ -43,6 +43,13 @@ _SCALAR_HINT = ("{verb} a {cls} by a number only; for the element-wise product o
                 "{cls} objects use a.multiply(b)")
 
 
+def is_number(value, whole=False) -> bool:
+    """Whether value is a number that PyRT takes for a size, a distance or a count: an int,
+    float or numpy number (only an int or numpy integer when whole), True and False aside."""
+    kinds = (int, np.integer) if whole else (int, float, np.number)
+    return isinstance(value, kinds) and not isinstance(value, (bool, np.bool_))
+
+
 # ------------------------------------------------------------------------------------------
 # Pickling, for worker processes
 # ------------------------------------------------------------------------------------------

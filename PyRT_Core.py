@@ -10,7 +10,7 @@ with the same answers, whenever the scene is made of PyRT's own classes.)
 from math import isfinite, tan
 
 from PyRT_Common import *
-from PyRT_Common import _restore_state, check_constants
+from PyRT_Common import _restore_state, check_constants, is_number
 from PyRT_Images import write_image_files
 
 # A ray direction whose squared length is this close to 1 is used as it is; anything else
@@ -54,7 +54,7 @@ def _check_nonzero(owner, name, v):
 
 
 def _check_positive(owner, name, value):
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+    if not is_number(value):
         raise TypeError(f"{owner}: {name} must be a number, got {value!r}")
     value = float(value)
     if not 0.0 < value < INFINITY:
@@ -443,7 +443,7 @@ class Camera:
     def _derive(self):
         for name in ("width", "height"):
             value = getattr(self, "_" + name)
-            if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+            if not is_number(value):
                 raise TypeError(f"Camera: {name} must be a whole number of pixels, "
                                 f"got {value!r}")
             if not (value >= 1 and value == int(value)):  # 500.0 is fine, 2.5 and nan not

@@ -9,7 +9,7 @@ What render() needs besides its loop (worker processes on every core, several sa
 pixel, the progress bar, checks) lives in PyRT_Rendering.py.
 """
 from PyRT_Common import *
-from PyRT_Common import __all__ as _common_names, _restore_state
+from PyRT_Common import __all__ as _common_names, _restore_state, is_number
 from PyRT_Rendering import (ADAPTIVE_TOLERANCE, check_render, not_a_color, rendered_blocks,
                             sampled_row)
 
@@ -145,8 +145,7 @@ class DepthIntegrator(Integrator):
 
     def __init__(self, filename_, max_depth_=10, experiment_name=""):
         super().__init__(filename_ + "_Depth", experiment_name)
-        if isinstance(max_depth_, bool) or not isinstance(max_depth_, (int, float, np.number)) \
-                or not 0.0 < max_depth_ < INFINITY:
+        if not (is_number(max_depth_) and 0.0 < max_depth_ < INFINITY):
             raise ValueError(f"DepthIntegrator: max_depth_ must be a positive finite distance, "
                              f"got {max_depth_!r}")
         self.max_depth = max_depth_

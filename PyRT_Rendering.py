@@ -38,10 +38,10 @@ import numpy as np
 from tqdm import tqdm
 
 from PyRT_Acceleration import accelerated, debugger_attached, plain
-from PyRT_Common import RGBColor, Ray, Vector3D, check_constants, plt
+from PyRT_Common import (INFINITY, RGBColor, Ray, Vector3D, check_constants, is_number,
+                         plt)
 from PyRT_Images import display_image, write_atomically
 
-INFINITY = float("inf")
 # With workers=None, a render that one process would finish sooner than this stays in
 # one process: starting workers would cost more than they save. Forked workers (Linux)
 # start in milliseconds; spawned ones (Windows, macOS) first import everything again,
@@ -89,7 +89,7 @@ def check_render(integrator, workers, samples_per_pixel, adaptive=False,
 
 def _check_count(name, value, allowed="a whole number >= 1"):
     """value as an int, or a ValueError naming the render() argument and what is allowed."""
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+    if not (is_number(value, whole=True) and value >= 1):
         raise ValueError(f"render: {name} must be {allowed}, got {value!r}")
     return int(value)
 
@@ -473,8 +473,7 @@ def sampling_plan(integrator, samples, adaptive, tolerance):
     """UniformSampling or AdaptiveSampling for render()'s arguments, checked."""
     if not isinstance(adaptive, (bool, np.bool_)):
         raise ValueError(f"render: adaptive must be True or False, got {adaptive!r}")
-    if isinstance(tolerance, bool) or not isinstance(tolerance, (int, float, np.number)) \
-            or not 0.0 <= tolerance <= 1.0:
+    if not (is_number(tolerance) and 0.0 <= tolerance <= 1.0):
         raise ValueError(f"render: tolerance must be a number from 0 to 1 (a fraction of the "
                          f"image's range as its PNG shows it), got {tolerance!r}")
     traced = _traces_its_rays(integrator)
