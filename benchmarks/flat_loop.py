@@ -8,8 +8,9 @@ PyRT_Core's primitives, Scene.closest_hit's strict tie rule, shadow_ray's offset
 Phong sum of PhongIntegrator. It tests every object for every ray, where render() leaves
 out the objects a ray cannot reach, so it measures what the interpreter needs for the
 image: the speed table quotes the framework as a multiple of it. The intersection tests
-are written out for camera rays and for shadow rays alike, on purpose: a function for
-them would be a call per test, which is what this loop measures the framework without.
+are written out once, inside the loop over a pixel's rays (its camera ray, then its
+shadow rays), not in a function: a function would be a call per test, which is what this
+loop measures the framework without.
 """
 from math import sqrt, tan
 
@@ -33,7 +34,7 @@ def flat_phong(scene) -> np.ndarray:
             constants = (n.x, n.y, n.z, p.x, p.y, p.z, a.x, a.y, a.z, b.x, b.y, b.z)
         else:
             raise TypeError(f"flat_phong renders spheres and parallelograms, not {obj!r}")
-        objects.append((type(obj) is Sphere, constants, kd.r, kd.g, kd.b))
+        objects.append((type(obj) is Sphere, constants, (kd.r, kd.g, kd.b)))
     lights = [(light.pos.x, light.pos.y, light.pos.z, light.intensity.r, light.intensity.g,
                light.intensity.b) for light in scene.pointLights]
     ambient_r, ambient_g, ambient_b = scene.i_a.r, scene.i_a.g, scene.i_a.b
@@ -50,111 +51,95 @@ def flat_phong(scene) -> np.ndarray:
         row = []
         for dx, dy, dz in zip((screen_x * inverse).tolist(), (screen_y * inverse).tolist(),
                               (-inverse).tolist()):
-            # The nearest hit of the camera ray from the origin, t in [0, infinity]; a later
-            # object must be strictly nearer.
-            t_max, nearest = INFINITY, None
-            for sphere, k, kr, kg, kb in objects:
-                if sphere:
-                    cx, cy, cz, r = k
-                    fx, fy, fz = (0.0 - cx) / r, (0.0 - cy) / r, (0.0 - cz) / r
-                    b = fx * dx + fy * dy + fz * dz
-                    ax, ay, az = fx - dx * b, fy - dy * b, fz - dz * b
-                    disc = 1.0 - (ax * ax + ay * ay + az * az)
-                    if disc < 0.0:
-                        continue
-                    f = sqrt(fx * fx + fy * fy + fz * fz)
-                    if b > 0.0:
-                        q = -b - sqrt(disc)
-                        t0, t1 = q * r, (f - 1.0) * ((f + 1.0) / q) * r
-                    else:
-                        q = sqrt(disc) - b
-                        t0, t1 = (f - 1.0) * ((f + 1.0) / q) * r, q * r
-                    if 0.0 <= t0 <= t_max:
-                        t = t0
-                    elif 0.0 <= t1 <= t_max:
-                        t = t1
-                    else:
-                        continue
-                else:
-                    nx, ny, nz, px, py, pz, uax, uay, uaz, ubx, uby, ubz = k
-                    den = dx * nx + dy * ny + dz * nz
-                    if den == 0.0:
-                        continue
-                    t = (nx * (px - 0.0) + ny * (py - 0.0) + nz * (pz - 0.0)) / den
-                    if not 0.0 <= t <= t_max:
-                        continue
-                    qx, qy, qz = 0.0 + dx * t - px, 0.0 + dy * t - py, 0.0 + dz * t - pz
-                    if not (low <= qx * uax + qy * uay + qz * uaz <= high
-                            and low <= qx * ubx + qy * uby + qz * ubz <= high):
-                        continue
-                if nearest is None or t < t_max:
-                    nearest, t_max = (sphere, k, kr, kg, kb), t
-            if nearest is None:
-                row += (0.0, 0.0, 0.0)
-                continue
-            sphere, k, kr, kg, kb = nearest
-            t = t_max
-            if sphere:  # the point along the outward normal, one radius from the centre
-                cx, cy, cz, r = k
-                vx, vy, vz = (0.0 + dx * t - cx) / r, (0.0 + dy * t - cy) / r, (0.0 + dz * t - cz) / r
-                inverse_length = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
-                nx, ny, nz = vx * inverse_length, vy * inverse_length, vz * inverse_length
-                px, py, pz = cx + nx * r, cy + ny * r, cz + nz * r
-            else:  # the point on the ray, the normal facing the ray
-                nx, ny, nz = k[:3]
-                if dx * nx + dy * ny + dz * nz > 0.0:
-                    nx, ny, nz = nx * -1.0, ny * -1.0, nz * -1.0
-                px, py, pz = 0.0 + dx * t, 0.0 + dy * t, 0.0 + dz * t
-            red, green, blue = kr * ambient_r, kg * ambient_g, kb * ambient_b
-            offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + t)
-            ox, oy, oz = px + nx * offset, py + ny * offset, pz + nz * offset
-            for lx, ly, lz, ir, ig, ib in lights:
-                tx, ty, tz = lx - px, ly - py, lz - pz
-                if nx * tx + ny * ty + nz * tz <= 0.0:
-                    continue  # the light is behind the surface
-                r = sqrt(tx * tx + ty * ty + tz * tz)
-                # The shadow ray: from just above the surface towards the light
-                wx, wy, wz = lx - ox, ly - oy, lz - oz
-                distance = sqrt(wx * wx + wy * wy + wz * wz)
-                wx, wy, wz = wx / distance, wy / distance, wz / distance
-                s_min, s_max = offset, distance * (1.0 - SHADOW_EPSILON)
-                for sphere, k, _, _, _ in objects:  # against every object
+            # The pixel's rays, one after the other: first its camera ray (r, from the
+            # origin, t in [0, infinity]), whose nearest hit it keeps, a later object only
+            # when strictly nearer; then a shadow ray to each light in front of the hit,
+            # which stops at the first object in its way.
+            ox = oy = oz = 0.0
+            rx, ry, rz, t_min, t_max = dx, dy, dz, 0.0, INFINITY
+            shadow_rays = None  # the lights left to test, once the camera ray has hit
+            while True:
+                nearest = None
+                for sphere, k, kd in objects:
                     if sphere:
-                        cx, cy, cz, sr = k
-                        fx, fy, fz = (ox - cx) / sr, (oy - cy) / sr, (oz - cz) / sr
-                        b = fx * wx + fy * wy + fz * wz
-                        ax, ay, az = fx - wx * b, fy - wy * b, fz - wz * b
+                        cx, cy, cz, r = k
+                        fx, fy, fz = (ox - cx) / r, (oy - cy) / r, (oz - cz) / r
+                        b = fx * rx + fy * ry + fz * rz
+                        ax, ay, az = fx - rx * b, fy - ry * b, fz - rz * b
                         disc = 1.0 - (ax * ax + ay * ay + az * az)
                         if disc < 0.0:
                             continue
                         f = sqrt(fx * fx + fy * fy + fz * fz)
                         if b > 0.0:
                             q = -b - sqrt(disc)
-                            t0, t1 = q * sr, (f - 1.0) * ((f + 1.0) / q) * sr
+                            t0, t1 = q * r, (f - 1.0) * ((f + 1.0) / q) * r
                         else:
                             q = sqrt(disc) - b
-                            t0, t1 = (f - 1.0) * ((f + 1.0) / q) * sr, q * sr
-                        if s_min <= t0 <= s_max or s_min <= t1 <= s_max:
-                            break
+                            t0, t1 = (f - 1.0) * ((f + 1.0) / q) * r, q * r
+                        if t_min <= t0 <= t_max:
+                            t = t0
+                        elif t_min <= t1 <= t_max:
+                            t = t1
+                        else:
+                            continue
                     else:
-                        snx, sny, snz, spx, spy, spz, uax, uay, uaz, ubx, uby, ubz = k
-                        den = wx * snx + wy * sny + wz * snz
+                        wx, wy, wz, cx, cy, cz, uax, uay, uaz, ubx, uby, ubz = k
+                        den = rx * wx + ry * wy + rz * wz
                         if den == 0.0:
                             continue
-                        ts = (snx * (spx - ox) + sny * (spy - oy) + snz * (spz - oz)) / den
-                        if not s_min <= ts <= s_max:
+                        t = (wx * (cx - ox) + wy * (cy - oy) + wz * (cz - oz)) / den
+                        if not t_min <= t <= t_max:
                             continue
-                        qx, qy, qz = ox + wx * ts - spx, oy + wy * ts - spy, oz + wz * ts - spz
-                        if (low <= qx * uax + qy * uay + qz * uaz <= high
+                        qx, qy, qz = ox + rx * t - cx, oy + ry * t - cy, oz + rz * t - cz
+                        if not (low <= qx * uax + qy * uay + qz * uaz <= high
                                 and low <= qx * ubx + qy * uby + qz * ubz <= high):
-                            break
-                else:  # nothing in the way: the Lambertian kd * cos, over r^2
-                    cos_theta = nx * (tx / r) + ny * (ty / r) + nz * (tz / r)
+                            continue
+                    if nearest is not None and t == t_max:
+                        continue  # as far as the nearest so far: the first one stays
+                    nearest, t_max = (sphere, k, kd), t
+                    if shadow_rays is not None:
+                        break  # a shadow ray needs only one object in its way
+                if shadow_rays is None:  # the camera ray's nearest hit
+                    if nearest is None:
+                        red = green = blue = 0.0
+                        break
+                    sphere, k, (kr, kg, kb) = nearest
+                    t = t_max
+                    if sphere:  # the point along the outward normal, one radius out
+                        cx, cy, cz, r = k
+                        vx, vy, vz = (dx * t - cx) / r, (dy * t - cy) / r, (dz * t - cz) / r
+                        inverse_length = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
+                        nx, ny, nz = vx * inverse_length, vy * inverse_length, vz * inverse_length
+                        px, py, pz = cx + nx * r, cy + ny * r, cz + nz * r
+                    else:  # the point on the ray, the normal facing the ray
+                        nx, ny, nz = k[:3]
+                        if dx * nx + dy * ny + dz * nz > 0.0:
+                            nx, ny, nz = nx * -1.0, ny * -1.0, nz * -1.0
+                        px, py, pz = 0.0 + dx * t, 0.0 + dy * t, 0.0 + dz * t
+                    red, green, blue = kr * ambient_r, kg * ambient_g, kb * ambient_b
+                    offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + t)
+                    ox, oy, oz = px + nx * offset, py + ny * offset, pz + nz * offset
+                    shadow_rays = iter(lights)
+                elif nearest is None:  # nothing in the way: Lambertian kd * cos, over r^2
+                    cos_theta = (nx * (tx / to_light) + ny * (ty / to_light)
+                                 + nz * (tz / to_light))
                     if cos_theta > 0.0:
-                        rr = r * r
+                        rr = to_light * to_light
                         red += ir * (kr * cos_theta) / rr
                         green += ig * (kg * cos_theta) / rr
                         blue += ib * (kb * cos_theta) / rr
+                # The next shadow ray, to a light in front of the surface, from just above it
+                for lx, ly, lz, ir, ig, ib in shadow_rays:
+                    tx, ty, tz = lx - px, ly - py, lz - pz
+                    if nx * tx + ny * ty + nz * tz > 0.0:
+                        break
+                else:
+                    break  # no light left: the pixel is done
+                to_light = sqrt(tx * tx + ty * ty + tz * tz)
+                rx, ry, rz = lx - ox, ly - oy, lz - oz
+                distance = sqrt(rx * rx + ry * ry + rz * rz)
+                rx, ry, rz = rx / distance, ry / distance, rz / distance
+                t_min, t_max = offset, distance * (1.0 - SHADOW_EPSILON)
             row += (red, green, blue)
         image[y] = np.array(row).reshape(-1, 3)
     return image
