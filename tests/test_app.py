@@ -21,20 +21,12 @@ from matplotlib.backend_bases import ResizeEvent
 
 import AppRenderer
 from AppRenderer import cornell_box_scene, sphere_test_scene
-from helpers import APP, REPO, render_image, run_python
+from helpers import APP, REPO, as_tuple, render_image, rgb, run_python
 from PyRT_Compare import REFERENCE_DIR
 from PyRT_Rendering import ADAPTIVE_TOLERANCE
 from PyRT_Core import Parallelogram, Sphere
 from PyRT_Integrators import (DepthIntegrator, IntersectionIntegrator, Integrator,
                               LazyIntegrator, NormalIntegrator, PhongIntegrator)
-
-
-def xyz(v):
-    return (v.x, v.y, v.z)
-
-
-def rgb(c):
-    return (c.r, c.g, c.b)
 
 
 def albedo(primitive):
@@ -45,7 +37,7 @@ def albedo(primitive):
 
 def assert_parallelogram(obj, point, s1, s2):
     assert isinstance(obj, Parallelogram)
-    assert (xyz(obj.point), xyz(obj.s1), xyz(obj.s2)) == (point, s1, s2)
+    assert (as_tuple(obj.point), as_tuple(obj.s1), as_tuple(obj.s2)) == (point, s1, s2)
 
 
 def file_states(folder):
@@ -73,13 +65,13 @@ def test_sphere_test_scene_has_the_course_numbers():
     assert rgb(scene.i_a) == (0.5, 0.5, 0.5)
     sphere, floor = scene.object_list
     assert isinstance(sphere, Sphere)
-    assert (xyz(sphere.origin), sphere.radius) == ((0, 0, -5), 2)
+    assert (as_tuple(sphere.origin), sphere.radius) == ((0, 0, -5), 2)
     assert albedo(sphere) == (0.8, 0.8, 0.8)
     assert_parallelogram(floor, (-4, -2, -1), (8, 0, 0), (0, 0, -8))
     assert albedo(floor) == (0.2, 0.8, 0.2)
     assert all(rgb(obj.emission) == (0, 0, 0) for obj in scene.object_list)
     [light] = scene.pointLights
-    assert (xyz(light.pos), rgb(light.intensity)) == ((0, 5, 0), (80, 80, 80))
+    assert (as_tuple(light.pos), rgb(light.intensity)) == ((0, 5, 0), (80, 80, 80))
     camera = scene.camera
     assert (camera.width, camera.height) == (500, 500)
     assert camera.vertical_fov == pytest.approx(math.radians(60))
@@ -114,7 +106,7 @@ def test_cornell_box_scene_has_the_course_numbers():
     assert rgb(scene.i_a) == (1, 1, 0.3)
     sphere, back, floor, left, ceiling, right = scene.object_list
     assert isinstance(sphere, Sphere)
-    assert (xyz(sphere.origin), sphere.radius) == ((0, 0, -1.75), 0.25)
+    assert (as_tuple(sphere.origin), sphere.radius) == ((0, 0, -1.75), 0.25)
     assert albedo(sphere) == (0.2, 0.2, 0.7)
     ll, ur = (-1, -1, -2.75), (1, 1, -2.75)
     assert_parallelogram(back, ll, (2, 0, 0), (0, 2, 0))
@@ -127,7 +119,7 @@ def test_cornell_box_scene_has_the_course_numbers():
     assert albedo(left) == (0.7, 0.2, 0.2)
     assert albedo(right) == (0.2, 0.7, 0.2)
     # Lights at y = side/2 - 0.5 = 0.5, z = -(dist + side/2) = -1.75, x = 0, -0.5, 0.5.
-    assert [xyz(light.pos) for light in scene.pointLights] == [
+    assert [as_tuple(light.pos) for light in scene.pointLights] == [
         (0, 0.5, -1.75), (-0.5, 0.5, -1.75), (0.5, 0.5, -1.75)]
     assert all(rgb(light.intensity) == (0.5, 0.5, 0.5) for light in scene.pointLights)
     camera = scene.camera

@@ -8,17 +8,10 @@ import numpy as np
 import pytest
 
 import PyRT_Common
+from helpers import as_tuple, rgb
 from PyRT_Common import (BLACK, EPSILON, GREEN, HUGEVALUE, RED, WHITE, Cross, Dot,
                          EnvironmentMap, HitData, Length, Normalize, Ray, RGBColor, Vector3D,
                          check_constants, orient_normal)
-
-
-def as_tuple(v):
-    return (v.x, v.y, v.z)
-
-
-def rgb(c):
-    return (c.r, c.g, c.b)
 
 
 # ------------------------------------------------------------------------------------------

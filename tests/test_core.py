@@ -11,21 +11,13 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import PyRT_Core
-from helpers import PNG_TOLERANCE, read_png
+from helpers import PNG_TOLERANCE, as_tuple, read_png, rgb
 from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, Cross, Dot, HitData, Length, Normalize,
                          RGBColor, Ray, Vector3D)
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight,
                        Primitive, Scene, Sphere)
 
 TIGHT = 1e-12
-
-
-def as_tuple(v):
-    return (v.x, v.y, v.z)
-
-
-def rgb(c):
-    return (c.r, c.g, c.b)
 
 
 def approx3(values, tol=TIGHT):

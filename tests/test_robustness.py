@@ -9,6 +9,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from AppRenderer import cornell_box_scene, sphere_test_scene
+from helpers import as_tuple
 from PyRT_Common import BLACK, HUGEVALUE, Cross, Dot, Length, Normalize, RGBColor, Ray, Vector3D
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight, Scene,
                        Sphere)
@@ -20,10 +21,6 @@ NAN = float("nan")
 
 PROPERTY = settings(max_examples=200, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])
-
-
-def as_tuple(v):
-    return (v.x, v.y, v.z)
 
 
 def is_finite(v):
