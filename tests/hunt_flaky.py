@@ -63,7 +63,7 @@ def usable_cores():
     return os.cpu_count() or 1
 
 
-def pytest_arguments(seed, pytest_args):
+def run_arguments(seed, pytest_args):
     """The arguments of pytest for one run: its order and Hypothesis's examples from seed,
     no cache between runs."""
     return ["-q", "-p", "no:cacheprovider", "-p", "no:randomly",
@@ -83,8 +83,8 @@ def run_pytest(seed, pytest_args, folder):
     # otherwise be replayed first, whatever this run's seed
     env["HYPOTHESIS_STORAGE_DIRECTORY"] = str(folder / "hypothesis")
     # temporary folders of its own, apart from other pytest runs on the machine
-    command = [sys.executable, "-m", "pytest", f"--basetemp={folder / 'basetemp'}",
-               *pytest_arguments(seed, pytest_args)]
+    command = [sys.executable, "-m", "pytest", "-p", "hunt_flaky",
+               f"--basetemp={folder / 'basetemp'}", *run_arguments(seed, pytest_args)]
     start = time.monotonic()
     try:
         result = subprocess.run(command, cwd=REPO, env=env, capture_output=True, text=True,
@@ -182,7 +182,7 @@ def main(argv=None):
     if first_red:
         seed, args = first_red
         print("The tests of the first red run, in its order (scheduling and load are not "
-              "repeated):\n    python -m pytest " + " ".join(pytest_arguments(seed, args)))
+              "repeated):\n    python -m pytest " + " ".join(run_arguments(seed, args)))
     return 1 if red else 0
 
 
