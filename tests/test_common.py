@@ -131,9 +131,9 @@ def test_the_star_error_names_the_class_and_the_method_to_use(make):
 
 @pytest.mark.parametrize("make", [Vector3D, RGBColor])
 def test_the_division_error_names_the_class(make):
-    with pytest.raises(TypeError, match=f"^divide a {make.__name__} by a number only; "
-                                        f"for the element-wise product of two "
-                                        f"{make.__name__} objects"):
+    with pytest.raises(TypeError, match=rf"^divide a {make.__name__} by a number only; "
+                                        rf"for the element-wise product of two "
+                                        rf"{make.__name__} objects"):
         make(1.0, 2.0, 3.0) / make(4.0, 5.0, 6.0)
 
 
