@@ -31,14 +31,17 @@ from PyRT_Integrators import *
 @pytest.fixture
 def worker_first(monkeypatch, tmp_path):
     """Makes this process hold back its first block of rows until a worker process has
-    finished one, so that both surely render part of the image. Call it before the render;
-    it returns the marker file a worker leaves once its first block is in the image.
+    finished one, and the worker hold back its first block until this process has taken
+    one, so that both surely render part of the image, however the processes are
+    scheduled. Call it before the render; it returns the marker file a worker leaves once
+    its first block is in the image.
 
     raise_in_worker = (exception class, arguments): the worker raises that exception after
     leaving the marker. interrupt: this process is stopped with Ctrl+C after its first
     block. Forked workers inherit the patched functions."""
     def install(raise_in_worker=None, interrupt=False):
         marker = tmp_path / "worker_rendered"
+        taken = tmp_path / "this_process_took_a_block"
         render_block, finish = PyRT_Rendering.render_block, PyRT_Rendering._SharedImage.finish
 
         def finish_and_mark(shared, i):  # only worker processes finish blocks
@@ -50,7 +53,10 @@ def worker_first(monkeypatch, tmp_path):
 
         def held_back(integrator, y0, y1, samples):
             if multiprocessing.parent_process() is None:  # this process
+                taken.touch()
                 wait_for_file(marker)
+            else:  # a worker, which could otherwise take every block before this process
+                wait_for_file(taken)
             rows = render_block(integrator, y0, y1, samples)
             if interrupt and multiprocessing.parent_process() is None:
                 raise KeyboardInterrupt
@@ -108,23 +114,34 @@ def test_worker_that_dies_holding_a_block_leaves_it_to_this_process(tmp_path, ca
             assert tuple(image[y, x]) == ((x + 10 * y) / 100,) * 3, (x, y)
 
 
-CHILDREN_SEEN = []  # by CountsWorkers in this process
-
-
-class CountsWorkers(PixelGrey):
-    """PixelGrey that notes, in this process, how many worker processes are running."""
+class ProcessIdAsRed(PixelGrey):
+    """PixelGrey whose red channel is the id of the process that rendered the pixel."""
 
     def compute_color(self, ray):
-        if multiprocessing.parent_process() is None:
-            CHILDREN_SEEN.append(len(multiprocessing.active_children()))
-        return super().compute_color(ray)
+        grey = super().compute_color(ray)
+        return RGBColor(float(os.getpid()), grey.g, grey.b)
 
 
-def test_two_workers_are_this_process_and_one_worker_process(tmp_path, worker_first):
-    CHILDREN_SEEN.clear()
+def test_two_workers_are_this_process_and_one_worker_process(tmp_path, monkeypatch,
+                                                             worker_first):
+    # The image itself says which process rendered each row, whichever finished first.
+    started = []  # the ids of the processes the render starts
+    start = multiprocessing.process.BaseProcess.start
+
+    def recorded_start(process):
+        start(process)
+        started.append(process.pid)
+
+    monkeypatch.setattr(multiprocessing.process.BaseProcess, "start", recorded_start)
     worker_first()
-    render_image(CountsWorkers(str(tmp_path / "img")), fov90_scene(4, 32), workers=2)
-    assert CHILDREN_SEEN and max(CHILDREN_SEEN) == 1
+    image = render_image(ProcessIdAsRed(str(tmp_path / "img")), fov90_scene(4, 32), workers=2)
+    assert len(started) == 1, started
+    renderers = image[:, :, 0]
+    assert (renderers == renderers[:, :1]).all()  # a process renders whole rows
+    assert set(renderers[:, 0]) == {os.getpid(), started[0]}
+    for y in range(32):
+        for x in range(4):
+            assert tuple(image[y, x, 1:]) == ((x + 10 * y) / 100,) * 2, (x, y)
 
 
 def test_error_in_a_worker_process_is_raised_with_the_worker_traceback(tmp_path, worker_first):
