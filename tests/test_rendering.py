@@ -10,6 +10,7 @@ import re
 import signal
 import sys
 import time
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -871,8 +872,29 @@ def test_adaptive_render_of_an_image_without_edges_shows_no_bar_for_refining(tmp
     assert "rays at edges" not in err
 
 
+class TickingClock:
+    """A perf_counter for PyRT_Rendering that moves on `tick` seconds at every reading: a
+    render takes the time the test says, however loaded the machine is."""
+
+    def __init__(self, tick):
+        self.now, self.tick = 0.0, tick
+
+    def __call__(self):
+        self.now += self.tick
+        return self.now
+
+
+def with_clock_and_two_cores(monkeypatch, tick):
+    monkeypatch.setattr(PyRT_Rendering, "time", SimpleNamespace(perf_counter=TickingClock(tick)))
+    monkeypatch.setattr(PyRT_Rendering, "usable_cores", lambda: 2)
+
+
 def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch):
-    # README: short renders stay in one process, where starting workers would cost more
+    # README: short renders stay in one process, where starting workers would cost more.
+    # The first of the 4 rows takes one tick, 1 ms: the other 3 would take 3 ms in one
+    # process, and the refined pixels as long, far less than PARALLEL_MIN_SECONDS.
+    with_clock_and_two_cores(monkeypatch, 0.001)
+
     def no_workers(*args):
         raise AssertionError("a short render started worker processes")
 
@@ -880,6 +902,31 @@ def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch
     image = render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4),
                          samples_per_pixel=4, adaptive=True)  # workers=None: all cores
     assert (image[:, 0] == 1.0).all() and (image[:, 3:] == 0.0).all()
+
+
+def test_long_render_with_all_cores_renders_each_pass_with_a_worker_per_other_core(
+        tmp_path, monkeypatch):
+    # The same render where a tick is 1 s. The centre rays: the first row, timed in this
+    # process, takes 1 s, so the other 3 would take 3 s, more than PARALLEL_MIN_SECONDS for
+    # any start method: rows 1 to 3, one block each, go to this process and 1 worker (2
+    # cores). The refined pixels: the centre rays took 3 s (4 readings), so the 8 refined
+    # pixels of 20 with 4 rays each would take 3 * 8 * 4 / 20 = 4.8 s: rows 0 to 3 again.
+    with_clock_and_two_cores(monkeypatch, 1.0)
+    passes = []
+    with_workers = PyRT_Rendering._render_with_workers
+
+    def recorded(camera, blocks, rows, count, *args):
+        passes.append((type(rows).__name__, blocks, count))
+        yield from with_workers(camera, blocks, rows, count, *args)
+
+    monkeypatch.setattr(PyRT_Rendering, "_render_with_workers", recorded)
+    image = render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4),
+                         samples_per_pixel=4, adaptive=True)
+    assert passes == [("_CourseRows", [(1, 2), (2, 3), (3, 4)], 1),
+                      ("_SampledRows", [(0, 1), (1, 2), (2, 3), (3, 4)], 1)]
+    one_process = render_image(StepAt(str(tmp_path / "one"), 2.3), fov90_scene(5, 4),
+                               workers=1, samples_per_pixel=4, adaptive=True)
+    assert np.array_equal(image, one_process)
 
 
 @pytest.mark.parametrize("adaptive, passes_made", [
