@@ -166,25 +166,21 @@ def test_script_renders_headless_from_another_folder(tmp_path):
 
 
 def test_default_output_folder_is_out_next_to_the_script(tmp_path):
-    out = REPO / "out"
+    # A copy of the script in a folder of its own, so that the test neither touches the
+    # renders in the repository's out/ nor depends on them, nor on another run of the tests
+    app = tmp_path / "app" / "AppRenderer.py"
+    app.parent.mkdir()
+    shutil.copyfile(APP, app)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    result = run_python([app, "--integrator", "intersection", "--scene", "sphere",
+                         "--width", 8, "--height", 6, "--no-window"], cwd=elsewhere)
+    assert result.returncode == 0, result.stderr
+    out = app.parent / "out"
     names = ["rendered_image_Intersection" + suffix for suffix in (".png", ".npy", ".hdr")]
-    backup = tmp_path / "backup"
-    backup.mkdir()
-    saved = [name for name in names if (out / name).exists()]
-    for name in saved:
-        shutil.move(out / name, backup / name)
-    try:
-        result = run_python([APP, "--integrator", "intersection", "--scene", "sphere",
-                             "--width", 8, "--height", 6, "--no-window"], cwd=tmp_path)
-        assert result.returncode == 0, result.stderr
-        assert all((out / name).is_file() for name in names)
-        assert np.load(out / names[1]).shape == (6, 8, 3)
-        assert not (tmp_path / "out").exists()
-    finally:
-        for name in names:
-            (out / name).unlink(missing_ok=True)
-        for name in saved:
-            shutil.move(backup / name, out / name)
+    assert sorted(path.name for path in out.iterdir()) == sorted(names)
+    assert np.load(out / names[1]).shape == (6, 8, 3)
+    assert list(elsewhere.iterdir()) == []
 
 
 FIGURE_NAMES = ["figure1_phong", "figure2_lazy", "figure3_intersection", "figure4_depth",
