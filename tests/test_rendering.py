@@ -37,9 +37,10 @@ def worker_first(monkeypatch, tmp_path):
     scheduled. Call it before the render; it returns the marker file a worker leaves once
     its first block is in the image.
 
-    raise_in_worker = (exception class, arguments): the worker raises that exception after
-    leaving the marker. interrupt: this process is stopped with Ctrl+C after its first
-    block. Forked workers inherit the patched functions."""
+    raise_in_worker = (exception class, arguments): the worker raises that exception in its
+    first block, once it has rendered the rows and left the marker: as an error in
+    compute_color does, it leaves the block unfinished. interrupt: this process is stopped
+    with Ctrl+C after its first block. Forked workers inherit the patched functions."""
     def install(raise_in_worker=None, interrupt=False):
         marker = tmp_path / "worker_rendered"
         taken = tmp_path / "this_process_took_a_block"
@@ -48,18 +49,20 @@ def worker_first(monkeypatch, tmp_path):
         def finish_and_mark(shared, i):  # only worker processes finish blocks
             finish(shared, i)
             marker.touch()
-            if raise_in_worker:
-                error_class, arguments = raise_in_worker
-                raise error_class(*arguments)
 
         def held_back(integrator, y0, y1, samples):
-            if multiprocessing.parent_process() is None:  # this process
+            in_worker = multiprocessing.parent_process() is not None
+            if in_worker:  # else it could take every block before this process takes one
+                wait_for_file(taken)
+            else:
                 taken.touch()
                 wait_for_file(marker)
-            else:  # a worker, which could otherwise take every block before this process
-                wait_for_file(taken)
             rows = render_block(integrator, y0, y1, samples)
-            if interrupt and multiprocessing.parent_process() is None:
+            if in_worker and raise_in_worker:
+                marker.touch()
+                error_class, arguments = raise_in_worker
+                raise error_class(*arguments)
+            if interrupt and not in_worker:
                 raise KeyboardInterrupt
             return rows
 
@@ -154,7 +157,7 @@ def test_error_in_a_worker_process_is_raised_with_the_worker_traceback(tmp_path,
     # where the worker raised it, as a traceback that starts on a line of its own
     where = str(raised.value.__cause__)
     assert where.startswith("\nTraceback (most recent call last):\n"), where
-    assert "finish_and_mark" in where
+    assert "in _worker\n" in where and "in held_back\n" in where, where
 
 
 class NeedsTwoArguments(Exception):
