@@ -91,8 +91,9 @@ def run_pytest(seed, pytest_args, folder):
                                 timeout=RUN_TIMEOUT)
         code, output = result.returncode, result.stdout + result.stderr
     except subprocess.TimeoutExpired as timeout:
-        code = "timeout"
-        output = (timeout.stdout or b"").decode(errors="replace")
+        code, output = "timeout", timeout.stdout or ""
+        if isinstance(output, bytes):  # what the run printed until then
+            output = output.decode(errors="replace")
     seconds = time.monotonic() - start
     failures = []
     if report.exists():
@@ -110,6 +111,7 @@ def run_pytest(seed, pytest_args, folder):
 
 def parse_arguments(argv):
     parser = argparse.ArgumentParser(
+        allow_abbrev=False,  # pytest's long options are not abbreviations of these
         description="Run the tests repeatedly in random order under load and report every "
                     "test that ever failed. Unknown arguments go to pytest.")
     parser.add_argument("--runs", type=int, default=10,
