@@ -136,22 +136,22 @@ def test_that_fails():
 def test_hunt_flaky_reports_each_failed_test_with_the_seeds_of_its_runs(tmp_path):
     tests = tmp_path / "test_sample.py"
     tests.write_text(SAMPLE_TESTS)
+    # --rootdir: test ids relative to tmp_path, wherever the repository lies
     result = run_python([TESTS / "hunt_flaky.py", "--runs", 2, "--load", 0, "--seed", 7,
-                         tests], cwd=tmp_path)
+                         f"--rootdir={tmp_path}", tests], cwd=tmp_path)
     assert result.returncode == 1, result.stdout + result.stderr
     lines = result.stdout.splitlines()
     assert lines[0].startswith("2 run(s) from seed 7, 0 busy process(es) on "), lines
     for run, seed in [(1, 7), (2, 8)]:
-        assert any(line.startswith(f"run {run}/2, seed {seed}, {tests}: 1 failed, 1 passed ")
-                   for line in lines), lines
-    # test ids are relative to the folder of the tests (pytest's rootdir)
+        assert any(line.startswith(f"run {run}/2, seed {seed}, --rootdir={tmp_path} {tests}: "
+                                   "1 failed, 1 passed ") for line in lines), lines
     assert lines.count("    FAILED test_sample.py::test_that_fails (call)") == 2
     assert "2 run(s) in random order with 0 busy process(es): 0 green, 2 red" in lines
     assert "  test_sample.py::test_that_fails: failed in 2 of 2 run(s), seed(s) 7, 8" in lines
     assert "test_that_passes" not in result.stdout
     assert lines[-1] == ("    python -m pytest -q -p no:cacheprovider -p no:randomly "
                          "--random-order-bucket=global --random-order-seed=7 "
-                         f"--hypothesis-seed=7 {tests}")
+                         f"--hypothesis-seed=7 --rootdir={tmp_path} {tests}")
 
 
 def test_hunt_flaky_exits_0_when_every_run_is_green(tmp_path):
