@@ -4,9 +4,11 @@ helpers are defined once (in helpers.py), and tests/hunt_flaky.py, which hunts f
 that fail by chance, reports every test that failed with the seed of its run."""
 import ast
 import io
+import multiprocessing
 import re
 import tokenize
 
+import hunt_flaky
 from helpers import REPO, run_python
 
 TESTS = REPO / "tests"
@@ -154,11 +156,18 @@ def test_hunt_flaky_reports_each_failed_test_with_the_seeds_of_its_runs(tmp_path
                          f"--hypothesis-seed=7 --rootdir={tmp_path} {tests}")
 
 
-def test_hunt_flaky_exits_0_when_every_run_is_green(tmp_path):
-    tests = tmp_path / "test_sample.py"
-    tests.write_text(SAMPLE_TESTS)
-    result = run_python([TESTS / "hunt_flaky.py", "--runs", 1, "--load", 1, tests,
-                         "-k", "passes"], cwd=tmp_path)
-    assert result.returncode == 0, result.stdout + result.stderr
-    assert "1 run(s) in random order with 1 busy process(es): 1 green, 0 red" in result.stdout
-    assert "FAILED" not in result.stdout
+def test_hunt_flaky_exits_0_when_every_run_is_green_and_stops_its_busy_processes(
+        monkeypatch, capsys):
+    runs = []
+
+    def green_run(seed, pytest_args, folder):
+        runs.append((seed, pytest_args))
+        return [], "5 passed in 0.01s", 0.01
+
+    monkeypatch.setattr(hunt_flaky, "run_pytest", green_run)
+    assert hunt_flaky.main(["--runs", "2", "--load", "1", "--seed", "3", "-k", "x"]) == 0
+    assert runs == [(3, ["-k", "x"]), (4, ["-k", "x"])]
+    out = capsys.readouterr().out
+    assert "2 run(s) in random order with 1 busy process(es): 2 green, 0 red" in out
+    assert "FAILED" not in out and "failed in" not in out
+    assert multiprocessing.active_children() == []
