@@ -26,6 +26,16 @@ PNG_TOLERANCE = 1.0 / 255.0 + 1e-6
 SUBPROCESS_TIMEOUT = 300  # seconds; only there so that a hung child cannot hang the suite
 
 
+def as_tuple(v):
+    """The components (x, y, z) of a Vector3D, to compare with numbers."""
+    return (v.x, v.y, v.z)
+
+
+def rgb(c):
+    """The channels (r, g, b) of an RGBColor, to compare with numbers."""
+    return (c.r, c.g, c.b)
+
+
 def render_image(integrator, scene, **render_options):
     """Attaches scene to integrator, renders it without a progress bar and returns the
     linear image it saved (the .npy file)."""

@@ -8,17 +8,10 @@ import numpy as np
 import pytest
 
 import PyRT_Common
+from helpers import as_tuple, rgb
 from PyRT_Common import (BLACK, EPSILON, GREEN, HUGEVALUE, RED, WHITE, Cross, Dot,
                          EnvironmentMap, HitData, Length, Normalize, Ray, RGBColor, Vector3D,
                          check_constants, orient_normal)
-
-
-def as_tuple(v):
-    return (v.x, v.y, v.z)
-
-
-def rgb(c):
-    return (c.r, c.g, c.b)
 
 
 # ------------------------------------------------------------------------------------------
@@ -138,9 +131,9 @@ def test_the_star_error_names_the_class_and_the_method_to_use(make):
 
 @pytest.mark.parametrize("make", [Vector3D, RGBColor])
 def test_the_division_error_names_the_class(make):
-    with pytest.raises(TypeError, match=f"^divide a {make.__name__} by a number only; "
-                                        f"for the element-wise product of two "
-                                        f"{make.__name__} objects"):
+    with pytest.raises(TypeError, match=rf"^divide a {make.__name__} by a number only; "
+                                        rf"for the element-wise product of two "
+                                        rf"{make.__name__} objects"):
         make(1.0, 2.0, 3.0) / make(4.0, 5.0, 6.0)
 
 

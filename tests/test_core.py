@@ -7,21 +7,13 @@ import pytest
 
 import PyRT_Acceleration
 import PyRT_Core
-from helpers import visible_lights
+from helpers import as_tuple, rgb, visible_lights
 from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, Cross, Dot, HitData, Length, Normalize,
                          RGBColor, Ray, Vector3D)
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight,
                        Primitive, Scene, Sphere)
 
 TIGHT = 1e-12
-
-
-def as_tuple(v):
-    return (v.x, v.y, v.z)
-
-
-def rgb(c):
-    return (c.r, c.g, c.b)
 
 
 def approx3(values, tol=TIGHT):

@@ -10,6 +10,7 @@ import re
 import signal
 import sys
 import time
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -31,28 +32,37 @@ from PyRT_Integrators import *
 @pytest.fixture
 def worker_first(monkeypatch, tmp_path):
     """Makes this process hold back its first block of rows until a worker process has
-    finished one, so that both surely render part of the image. Call it before the render;
-    it returns the marker file a worker leaves once its first block is in the image.
+    finished one, and the worker hold back its first block until this process has taken
+    one, so that both surely render part of the image, however the processes are
+    scheduled. Call it before the render; it returns the marker file a worker leaves once
+    its first block is in the image.
 
-    raise_in_worker = (exception class, arguments): the worker raises that exception after
-    leaving the marker. interrupt: this process is stopped with Ctrl+C after its first
-    block. Forked workers inherit the patched functions."""
+    raise_in_worker = (exception class, arguments): the worker raises that exception in its
+    first block, once it has rendered the rows and left the marker: as an error in
+    compute_color does, it leaves the block unfinished. interrupt: this process is stopped
+    with Ctrl+C after its first block. Forked workers inherit the patched functions."""
     def install(raise_in_worker=None, interrupt=False):
         marker = tmp_path / "worker_rendered"
+        taken = tmp_path / "this_process_took_a_block"
         render_block, finish = PyRT_Rendering.render_block, PyRT_Rendering._SharedImage.finish
 
         def finish_and_mark(shared, i):  # only worker processes finish blocks
             finish(shared, i)
             marker.touch()
-            if raise_in_worker:
-                error_class, arguments = raise_in_worker
-                raise error_class(*arguments)
 
         def held_back(integrator, y0, y1, samples):
-            if multiprocessing.parent_process() is None:  # this process
+            in_worker = multiprocessing.parent_process() is not None
+            if in_worker:  # else it could take every block before this process takes one
+                wait_for_file(taken)
+            else:
+                taken.touch()
                 wait_for_file(marker)
             rows = render_block(integrator, y0, y1, samples)
-            if interrupt and multiprocessing.parent_process() is None:
+            if in_worker and raise_in_worker:
+                marker.touch()
+                error_class, arguments = raise_in_worker
+                raise error_class(*arguments)
+            if interrupt and not in_worker:
                 raise KeyboardInterrupt
             return rows
 
@@ -108,23 +118,34 @@ def test_worker_that_dies_holding_a_block_leaves_it_to_this_process(tmp_path, ca
             assert tuple(image[y, x]) == ((x + 10 * y) / 100,) * 3, (x, y)
 
 
-CHILDREN_SEEN = []  # by CountsWorkers in this process
-
-
-class CountsWorkers(PixelGrey):
-    """PixelGrey that notes, in this process, how many worker processes are running."""
+class ProcessIdAsRed(PixelGrey):
+    """PixelGrey whose red channel is the id of the process that rendered the pixel."""
 
     def compute_color(self, ray):
-        if multiprocessing.parent_process() is None:
-            CHILDREN_SEEN.append(len(multiprocessing.active_children()))
-        return super().compute_color(ray)
+        grey = super().compute_color(ray)
+        return RGBColor(float(os.getpid()), grey.g, grey.b)
 
 
-def test_two_workers_are_this_process_and_one_worker_process(tmp_path, worker_first):
-    CHILDREN_SEEN.clear()
+def test_two_workers_are_this_process_and_one_worker_process(tmp_path, monkeypatch,
+                                                             worker_first):
+    # The image itself says which process rendered each row, whichever finished first.
+    started = []  # the ids of the processes the render starts
+    start = multiprocessing.process.BaseProcess.start
+
+    def recorded_start(process):
+        start(process)
+        started.append(process.pid)
+
+    monkeypatch.setattr(multiprocessing.process.BaseProcess, "start", recorded_start)
     worker_first()
-    render_image(CountsWorkers(str(tmp_path / "img")), fov90_scene(4, 32), workers=2)
-    assert CHILDREN_SEEN and max(CHILDREN_SEEN) == 1
+    image = render_image(ProcessIdAsRed(str(tmp_path / "img")), fov90_scene(4, 32), workers=2)
+    assert len(started) == 1, started
+    renderers = image[:, :, 0]
+    assert (renderers == renderers[:, :1]).all()  # a process renders whole rows
+    assert set(renderers[:, 0]) == {os.getpid(), started[0]}
+    for y in range(32):
+        for x in range(4):
+            assert tuple(image[y, x, 1:]) == ((x + 10 * y) / 100,) * 2, (x, y)
 
 
 def test_error_in_a_worker_process_is_raised_with_the_worker_traceback(tmp_path, worker_first):
@@ -136,7 +157,7 @@ def test_error_in_a_worker_process_is_raised_with_the_worker_traceback(tmp_path,
     # where the worker raised it, as a traceback that starts on a line of its own
     where = str(raised.value.__cause__)
     assert where.startswith("\nTraceback (most recent call last):\n"), where
-    assert "finish_and_mark" in where
+    assert "in _worker\n" in where and "in held_back\n" in where, where
 
 
 class NeedsTwoArguments(Exception):
@@ -608,7 +629,7 @@ def test_bad_render_option_message_says_what_is_allowed(tmp_path, option, value,
 def test_bad_render_option_raises_value_error_naming_it(tmp_path, option, value):
     integrator = PhongIntegrator(str(tmp_path / "out" / "img"))
     integrator.add_scene(sphere_test_scene(width=4, height=4))
-    with pytest.raises(ValueError, match=option):
+    with pytest.raises(ValueError, match=re.escape(option)):
         integrator.render(progress=False, **{option: value})
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
 
@@ -854,8 +875,29 @@ def test_adaptive_render_of_an_image_without_edges_shows_no_bar_for_refining(tmp
     assert "rays at edges" not in err
 
 
+class TickingClock:
+    """A perf_counter for PyRT_Rendering that moves on `tick` seconds at every reading: a
+    render takes the time the test says, however loaded the machine is."""
+
+    def __init__(self, tick):
+        self.now, self.tick = 0.0, tick
+
+    def __call__(self):
+        self.now += self.tick
+        return self.now
+
+
+def with_clock_and_two_cores(monkeypatch, tick):
+    monkeypatch.setattr(PyRT_Rendering, "time", SimpleNamespace(perf_counter=TickingClock(tick)))
+    monkeypatch.setattr(PyRT_Rendering, "usable_cores", lambda: 2)
+
+
 def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch):
-    # README: short renders stay in one process, where starting workers would cost more
+    # README: short renders stay in one process, where starting workers would cost more.
+    # The first of the 4 rows takes one tick, 1 ms: the other 3 would take 3 ms in one
+    # process, and the refined pixels as long, far less than PARALLEL_MIN_SECONDS.
+    with_clock_and_two_cores(monkeypatch, 0.001)
+
     def no_workers(*args):
         raise AssertionError("a short render started worker processes")
 
@@ -863,6 +905,31 @@ def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch
     image = render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4),
                          samples_per_pixel=4, adaptive=True)  # workers=None: all cores
     assert (image[:, 0] == 1.0).all() and (image[:, 3:] == 0.0).all()
+
+
+def test_long_render_with_all_cores_renders_each_pass_with_a_worker_per_other_core(
+        tmp_path, monkeypatch):
+    # The same render where a tick is 1 s. The centre rays: the first row, timed in this
+    # process, takes 1 s, so the other 3 would take 3 s, more than PARALLEL_MIN_SECONDS for
+    # any start method: rows 1 to 3, one block each, go to this process and 1 worker (2
+    # cores). The refined pixels: the centre rays took 3 s (4 readings), so the 8 refined
+    # pixels of 20 with 4 rays each would take 3 * 8 * 4 / 20 = 4.8 s: rows 0 to 3 again.
+    with_clock_and_two_cores(monkeypatch, 1.0)
+    passes = []
+    with_workers = PyRT_Rendering._render_with_workers
+
+    def recorded(camera, blocks, rows, count, *args):
+        passes.append((type(rows).__name__, blocks, count))
+        yield from with_workers(camera, blocks, rows, count, *args)
+
+    monkeypatch.setattr(PyRT_Rendering, "_render_with_workers", recorded)
+    image = render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4),
+                         samples_per_pixel=4, adaptive=True)
+    assert passes == [("_CourseRows", [(1, 2), (2, 3), (3, 4)], 1),
+                      ("_SampledRows", [(0, 1), (1, 2), (2, 3), (3, 4)], 1)]
+    one_process = render_image(StepAt(str(tmp_path / "one"), 2.3), fov90_scene(5, 4),
+                               workers=1, samples_per_pixel=4, adaptive=True)
+    assert np.array_equal(image, one_process)
 
 
 @pytest.mark.parametrize("adaptive, passes_made", [
@@ -1161,7 +1228,7 @@ def test_bad_adaptive_option_raises_value_error_naming_it(tmp_path, options, nam
     integrator = PhongIntegrator(str(tmp_path / "out" / "img"))
     integrator.add_scene(sphere_test_scene(width=4, height=4))
     options.setdefault("samples_per_pixel", 4)
-    with pytest.raises(ValueError, match=named):
+    with pytest.raises(ValueError, match=re.escape(named)):
         integrator.render(progress=False, **options)
     assert not (tmp_path / "out").exists()
 
@@ -1314,8 +1381,8 @@ class LeavesOutTheLastNumberOfRow2(PixelGrey):
 def test_rows_that_do_not_form_an_image_stop_the_render_with_a_value_error(tmp_path):
     integrator = LeavesOutTheLastNumberOfRow2(str(tmp_path / "img"))
     integrator.add_scene(fov90_scene(3, 8))
-    with pytest.raises(ValueError, match="^render: the colours of the image do not form an "
-                                         "array$"):
+    with pytest.raises(ValueError, match=r"^render: the colours of the image do not form an "
+                                         r"array$"):
         integrator.render(workers=1, progress=False)
     assert not (tmp_path / "img_PixelGrey.npy").exists()
 
@@ -1428,7 +1495,7 @@ def test_existing_folder_where_no_file_can_be_made_fails_before_rendering():
     # /proc exists, and not even root can create a file there
     integrator = PixelGrey("/proc/img")
     integrator.add_scene(fov90_scene(3, 3))
-    with pytest.raises(PermissionError, match="^render: cannot write the images to '/proc' "):
+    with pytest.raises(PermissionError, match=r"^render: cannot write the images to '/proc' "):
         integrator.render(workers=1, progress=False)
     assert integrator.calls == 0
 

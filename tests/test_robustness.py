@@ -9,6 +9,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from AppRenderer import cornell_box_scene, sphere_test_scene
+from helpers import as_tuple
 from PyRT_Common import BLACK, HUGEVALUE, Cross, Dot, Length, Normalize, RGBColor, Ray, Vector3D
 from PyRT_Core import (Camera, InfinitePlane, Lambertian, Parallelogram, PointLight, Scene,
                        Sphere)
@@ -20,10 +21,6 @@ NAN = float("nan")
 
 PROPERTY = settings(max_examples=200, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])
-
-
-def as_tuple(v):
-    return (v.x, v.y, v.z)
 
 
 def is_finite(v):
@@ -778,25 +775,25 @@ PIXEL_COUNTS = [(0, ValueError), (-1, ValueError), (2.5, ValueError), (True, Typ
 
 @pytest.mark.parametrize("width, exception", PIXEL_COUNTS)
 def test_camera_width_must_be_a_positive_integer(width, exception):
-    with pytest.raises(exception, match="^Camera: width must be a "):
+    with pytest.raises(exception, match=r"^Camera: width must be a "):
         Camera(width, 10, 60)
 
 
 @pytest.mark.parametrize("height, exception", PIXEL_COUNTS)
 def test_camera_height_must_be_a_positive_integer(height, exception):
-    with pytest.raises(exception, match="^Camera: height must be a "):
+    with pytest.raises(exception, match=r"^Camera: height must be a "):
         Camera(10, height, 60)
 
 
 @pytest.mark.parametrize("fov", [0, 180, -5, 200, NAN, INF])
 def test_camera_fov_must_lie_strictly_between_0_and_180(fov):
-    with pytest.raises(ValueError, match="^Camera: vertical_fov_ "):
+    with pytest.raises(ValueError, match=r"^Camera: vertical_fov_ "):
         Camera(10, 10, fov)
 
 
 @pytest.mark.parametrize("fov", ["60", True, None])
 def test_camera_fov_must_be_a_number(fov):
-    with pytest.raises(TypeError, match="^Camera: vertical_fov_ must be a number, got "):
+    with pytest.raises(TypeError, match=r"^Camera: vertical_fov_ must be a number, got "):
         Camera(10, 10, fov)
 
 
@@ -824,12 +821,12 @@ def test_camera_size_given_as_whole_floats_becomes_whole_numbers():
 
 @pytest.mark.parametrize("radius", [0, -1, INF, NAN])
 def test_sphere_radius_must_be_positive_and_finite(radius):
-    with pytest.raises(ValueError, match="^Sphere: sphere_radius must be positive and finite"):
+    with pytest.raises(ValueError, match=r"^Sphere: sphere_radius must be positive and finite"):
         Sphere(GOOD, radius)
 
 
 def test_sphere_radius_must_be_a_number():
-    with pytest.raises(TypeError, match="^Sphere: sphere_radius must be a number, got "):
+    with pytest.raises(TypeError, match=r"^Sphere: sphere_radius must be a number, got "):
         Sphere(GOOD, "2")
 
 
@@ -838,19 +835,19 @@ BAD_VECTORS = [Vector3D(NAN, 0.0, 0.0), Vector3D(0.0, INF, 0.0), Vector3D(0.0, 0
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_sphere_origin_must_be_finite(bad):
-    with pytest.raises(ValueError, match="^Sphere: sphere_origin must have finite components"):
+    with pytest.raises(ValueError, match=r"^Sphere: sphere_origin must have finite components"):
         Sphere(bad, 1.0)
 
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_point_light_position_must_be_finite(bad):
-    with pytest.raises(ValueError, match="^PointLight: pos_ must have finite components"):
+    with pytest.raises(ValueError, match=r"^PointLight: pos_ must have finite components"):
         PointLight(bad, RGBColor(1.0, 1.0, 1.0))
 
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_parallelogram_point_must_be_finite(bad):
-    with pytest.raises(ValueError, match="^Parallelogram: point must have finite components"):
+    with pytest.raises(ValueError, match=r"^Parallelogram: point must have finite components"):
         Parallelogram(bad, Vector3D(1.0, 0.0, 0.0), Vector3D(0.0, 1.0, 0.0))
 
 
@@ -871,7 +868,7 @@ def test_directions_that_are_not_finite_vectors_are_refused_naming_them(make, na
 
 @pytest.mark.parametrize("bad", BAD_VECTORS)
 def test_plane_origin_must_be_finite(bad):
-    with pytest.raises(ValueError, match="^InfinitePlane: plane_origin must have finite "):
+    with pytest.raises(ValueError, match=r"^InfinitePlane: plane_origin must have finite "):
         InfinitePlane(bad, Vector3D(0.0, 1.0, 0.0))
 
 
@@ -887,7 +884,7 @@ def test_vectors_and_colours_must_hold_numbers():
 
 
 def test_sphere_origin_must_be_a_vector():
-    with pytest.raises(TypeError, match="^Sphere: sphere_origin must be a Vector3D, got "):
+    with pytest.raises(TypeError, match=r"^Sphere: sphere_origin must be a Vector3D, got "):
         Sphere((0.0, 0.0, -5.0), 1.0)
 
 
@@ -895,7 +892,7 @@ def test_sphere_origin_must_be_a_vector():
 def test_parallelogram_sides_must_be_non_zero(name):
     sides = {"s1": Vector3D(1.0, 0.0, 0.0), "s2": Vector3D(0.0, 1.0, 0.0)}
     sides[name] = Vector3D(0.0, 0.0, 0.0)
-    with pytest.raises(ValueError, match=f"^Parallelogram: {name} must not be the zero vector"):
+    with pytest.raises(ValueError, match=rf"^Parallelogram: {name} must not be the zero vector"):
         Parallelogram(GOOD, sides["s1"], sides["s2"])
 
 
@@ -914,9 +911,9 @@ def test_parallelogram_sides_must_not_be_parallel(s2):
 
 
 @pytest.mark.parametrize("make, message", [
-    (lambda: Scene().set_ambient((0.1, 0.2, 0.3)), "^Scene\\.set_ambient: i_a must be a RGBColor"),
-    (lambda: Sphere(GOOD, 1.0, emission=(1.0, 1.0, 1.0)), "^Sphere: emission must be a RGBColor"),
-    (lambda: PointLight(GOOD, 80.0), "^PointLight: intensity_ must be a RGBColor"),
+    (lambda: Scene().set_ambient((0.1, 0.2, 0.3)), r"^Scene\.set_ambient: i_a must be a RGBColor"),
+    (lambda: Sphere(GOOD, 1.0, emission=(1.0, 1.0, 1.0)), r"^Sphere: emission must be a RGBColor"),
+    (lambda: PointLight(GOOD, 80.0), r"^PointLight: intensity_ must be a RGBColor"),
 ], ids=["ambient", "emission", "intensity"])
 def test_colours_that_are_not_rgb_colours_are_refused_naming_the_argument(make, message):
     with pytest.raises(TypeError, match=message):
@@ -950,7 +947,7 @@ def test_a_ray_with_no_direction_is_refused_with_what_to_do(direction):
 
 
 def test_plane_normal_must_be_non_zero():
-    with pytest.raises(ValueError, match="^InfinitePlane: plane_normal must not be the zero "):
+    with pytest.raises(ValueError, match=r"^InfinitePlane: plane_normal must not be the zero "):
         InfinitePlane(GOOD, Vector3D(0.0, 0.0, 0.0))
 
 
@@ -977,7 +974,7 @@ def test_depth_integrator_max_depth_must_be_positive(max_depth):
 
 @pytest.mark.parametrize("colour", [(0.5, 0.5, 0.5), Vector3D(0.5, 0.5, 0.5), 0.5, None])
 def test_lambertian_needs_an_rgb_colour(colour):
-    with pytest.raises(TypeError, match="^Lambertian: diffuse_colour must be a RGBColor, got "):
+    with pytest.raises(TypeError, match=r"^Lambertian: diffuse_colour must be a RGBColor, got "):
         Lambertian(colour)
 
 
