@@ -73,8 +73,8 @@ INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
     Parallelogram: ("PyRT_Core.Parallelogram.intersect", "f0e341192758a0f6"),
 }
 PHONG_FUNCTIONS = {  # PhongIntegrator.compute_color and what it calls besides the queries
-    "PyRT_Integrators.PhongIntegrator.compute_color": "55bc13c354eb6263",
-    "PyRT_Integrators.shadow_ray": "060d881544837755",
+    "PyRT_Integrators.PhongIntegrator.compute_color": "0c3a57a29d7ae810",
+    "PyRT_Integrators.shadow_ray": "6f23314f706ba70d",
     "PyRT_Integrators.Length": "c459d28ec7b625fa",
     "PyRT_Integrators.Dot": "5968b1bc66a4e991",
     "PyRT_Core.Primitive.get_BRDF": "5009389ae19f8874",
@@ -361,15 +361,18 @@ class AcceleratedPhong:
         kd, ambient = brdf.kd, self.ambient
         kr, kg, kb = kd.r, kd.g, kd.b
         red, green, blue = kr * ambient.r, kg * ambient.g, kb * ambient.b
-        offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + t)
+        size = max(abs(px), abs(py), abs(pz)) + t
+        if size == 0.0:  # shadow_ray takes the size from each light's distance
+            return self.plain_color(ray)
+        offset = OFFSET_SCALE * size
         longest = self.longest_shadow_ray
         for x, y, z, ir, ig, ib, x0, x1, y0, y1, z0, z1, inside, entries in self.lights:
             tx, ty, tz = x - px, y - py, z - pz  # to_light
-            if nx * tx + ny * ty + nz * tz <= 0.0:
-                continue
             squares = tx * tx + ty * ty + tz * tz
             r = sqrt(squares) if SQUARES_LOW < squares < SQUARES_HIGH else (
                 euclidean_length(tx, ty, tz))
+            if r * r == 0.0 or nx * tx + ny * ty + nz * tz <= 0.0:
+                continue
             # shadow_ray(hit, light.pos): the light is in front, so the offset is upwards
             sox, soy, soz = px + nx * offset, py + ny * offset, pz + nz * offset
             sx, sy, sz = x - sox, y - soy, z - soz

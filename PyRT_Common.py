@@ -392,12 +392,16 @@ def shadow_ray(hit, target):
     of its way (t_min), by offset = 2^-32 (largest |coordinate| of the point + its
     hit_distance): far above the rounding error of the point, about 1e-16 of its size, far
     below any detail of the scene, and the same at every scale, where a fixed EPSILON is
-    too large for tiny scenes and too small for huge ones. The ray stops a millionth of
+    too large for tiny scenes and too small for huge ones. (A hit at the world's origin,
+    where its own ray starts, takes its size from the distance to target.) The ray stops a millionth of
     its length short of target (SHADOW_EPSILON), so that a light lying on a surface is not
     hidden by that surface."""
     p, n = hit.hit_point, hit.normal
     px, py, pz, nx, ny, nz = p.x, p.y, p.z, n.x, n.y, n.z
-    offset = OFFSET_SCALE * (max(abs(px), abs(py), abs(pz)) + hit.hit_distance)
+    size = max(abs(px), abs(py), abs(pz)) + hit.hit_distance
+    if size == 0.0:  # a hit at the origin, where its ray starts: the target gives the size
+        size = euclidean_length(target.x - px, target.y - py, target.z - pz)
+    offset = OFFSET_SCALE * size
     if (target.x - px) * nx + (target.y - py) * ny + (target.z - pz) * nz < 0.0:
         offset = -offset  # target lies behind the surface: start below it
     ox, oy, oz = px + nx * offset, py + ny * offset, pz + nz * offset

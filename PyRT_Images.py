@@ -68,7 +68,10 @@ def write_image_files(image, full_filename, tonemap=True):
 
 def _write_linear_files(image, base):
     """Writes the .npy and .hdr files of the linear image."""
-    ok, hdr = cv2.imencode(".hdr", np.ascontiguousarray(image[:, :, ::-1], np.float32))
+    # Single precision, as the HDR format holds it: larger values are its largest.
+    largest = np.finfo(np.float32).max
+    ok, hdr = cv2.imencode(".hdr", np.clip(image[:, :, ::-1], -largest, largest).astype(
+        np.float32))
     if not ok:
         raise RuntimeError("Scene.save_image: OpenCV could not encode the HDR image")
     write_atomically(_with_suffix(base, ".hdr"), lambda f: f.write(hdr))

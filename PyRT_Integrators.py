@@ -201,9 +201,9 @@ class PhongIntegrator(Integrator):
         wo = ray.d * -1.0
         for light in scene.pointLights:
             to_light = light.pos - hit.hit_point
-            if Dot(hit.normal, to_light) <= 0.0:
-                continue  # the light is behind the surface, or on it: no light here
             r = Length(to_light)
+            if r * r == 0.0 or Dot(hit.normal, to_light) <= 0.0:
+                continue  # the light is at the point, behind the surface or on it
             wi = to_light / r
             if not scene.any_hit(shadow_ray(hit, light.pos)):
                 f = brdf.get_value(wi, wo, hit.normal)

@@ -131,11 +131,11 @@ def flat_phong(scene) -> np.ndarray:
                 # The next shadow ray, to a light in front of the surface, from just above it
                 for lx, ly, lz, ir, ig, ib in shadow_rays:
                     tx, ty, tz = lx - px, ly - py, lz - pz
-                    if nx * tx + ny * ty + nz * tz > 0.0:
+                    to_light = sqrt(tx * tx + ty * ty + tz * tz)
+                    if to_light * to_light != 0.0 and nx * tx + ny * ty + nz * tz > 0.0:
                         break
                 else:
                     break  # no light left: the pixel is done
-                to_light = sqrt(tx * tx + ty * ty + tz * tz)
                 rx, ry, rz = lx - ox, ly - oy, lz - oz
                 distance = sqrt(rx * rx + ry * ry + rz * rz)
                 rx, ry, rz = rx / distance, ry / distance, rz / distance

@@ -1,7 +1,19 @@
-"""Fixtures shared by several test modules."""
+"""Fixtures shared by several test modules, and Hypothesis's profiles.
+
+A plain run of the tests, CI's included, draws the same property-test examples every
+time (the profile "repeatable", derandomized): it cannot fail by chance.
+tests/hunt_flaky.py sets PYRT_HYPOTHESIS_PROFILE=hunt, which draws new examples from each
+run's --hypothesis-seed."""
+import os
+
 import pytest
+from hypothesis import settings
 
 from helpers import APP, run_python
+
+settings.register_profile("repeatable", derandomize=True)
+settings.register_profile("hunt", derandomize=False)
+settings.load_profile(os.environ.get("PYRT_HYPOTHESIS_PROFILE", "repeatable"))
 
 
 @pytest.fixture(scope="session")

@@ -32,6 +32,7 @@ from pathlib import Path
 TESTS = Path(__file__).resolve().parent
 REPO = TESTS.parent
 REPORT_VARIABLE = "HUNT_FLAKY_REPORT"  # where the plugin writes a run's failures
+PROFILE_VARIABLE = "PYRT_HYPOTHESIS_PROFILE"
 # Only there so that a run that hangs cannot hold the hunt for ever.
 RUN_TIMEOUT = 1800  # seconds
 
@@ -82,6 +83,7 @@ def run_pytest(seed, pytest_args, folder):
     # an empty example database: a failure Hypothesis stored in an earlier run would
     # otherwise be replayed first, whatever this run's seed
     env["HYPOTHESIS_STORAGE_DIRECTORY"] = str(folder / "hypothesis")
+    env[PROFILE_VARIABLE] = "hunt"  # new examples from each run's seed (tests/conftest.py)
     # temporary folders of its own, apart from other pytest runs on the machine
     command = [sys.executable, "-m", "pytest", "-p", "hunt_flaky",
                f"--basetemp={folder / 'basetemp'}", *run_arguments(seed, pytest_args)]
@@ -184,7 +186,8 @@ def main(argv=None):
     if first_red:
         seed, args = first_red
         print("The tests of the first red run, in its order (scheduling and load are not "
-              "repeated):\n    python -m pytest " + " ".join(run_arguments(seed, args)))
+              f"repeated):\n    {PROFILE_VARIABLE}=hunt python -m pytest "
+              + " ".join(run_arguments(seed, args)))
     return 1 if red else 0
 
 

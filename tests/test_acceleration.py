@@ -18,8 +18,7 @@ from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
 
-# The same examples on every run: a property test must not fail by chance.
-PROPERTY = settings(max_examples=120, deadline=None, derandomize=True,
+PROPERTY = settings(max_examples=120, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 WHITE_LIGHT = RGBColor(1.0, 1.0, 1.0)
 GREY = RGBColor(0.5, 0.5, 0.5)

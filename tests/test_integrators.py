@@ -510,3 +510,19 @@ def test_a_course_style_student_solution_runs_unchanged_and_gives_pyrt_images(tm
         student = np.load(tmp_path / "student" / f"{name}.npy")
         assert own.any(), name
         np.testing.assert_allclose(student, own, rtol=1e-12, atol=1e-15, err_msg=name)
+
+
+@pytest.mark.parametrize("height, lit", [(1e-170, False), (1e-150, True)])
+def test_phong_with_a_light_at_the_point_seen_neither_crashes_nor_gives_infinity(
+        tmp_path, height, lit):
+    # The camera's ray meets the floor z = 0 where it starts, at the origin, and a light
+    # hangs `height` above that point. At 1e-170 the square of its distance is below the
+    # smallest double: the light is at the point, and lights nothing; at 1e-150 it lights
+    # the point with I kd / r^2 = kd 1e300, large but finite.
+    scene = fov90_scene(1, 1, [(InfinitePlane(Vector3D(0, 0, 0), Vector3D(0, 0, 1)), GREY)],
+                        lights=[(Vector3D(0.0, 0.0, height), RGBColor(1.0, 1.0, 1.0))],
+                        ambient=RGBColor(1.0, 1.0, 1.0))
+    image = render_image(PhongIntegrator(str(tmp_path / "img")), scene, workers=1)
+    kd = 0.5 / math.pi
+    expected = kd + (kd / height ** 2 if lit else 0.0)
+    np.testing.assert_allclose(image[0, 0], [expected] * 3, rtol=1e-12)

@@ -151,7 +151,8 @@ def test_hunt_flaky_reports_each_failed_test_with_the_seeds_of_its_runs(tmp_path
     assert "2 run(s) in random order with 0 busy process(es): 0 green, 2 red" in lines
     assert "  test_sample.py::test_that_fails: failed in 2 of 2 run(s), seed(s) 7, 8" in lines
     assert "test_that_passes" not in result.stdout
-    assert lines[-1] == ("    python -m pytest -q -p no:cacheprovider -p no:randomly "
+    assert lines[-1] == ("    PYRT_HYPOTHESIS_PROFILE=hunt python -m pytest -q -p no:cacheprovider "
+                         "-p no:randomly "
                          "--random-order-bucket=global --random-order-seed=7 "
                          f"--hypothesis-seed=7 --rootdir={tmp_path} {tests}")
 
