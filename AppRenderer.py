@@ -13,7 +13,7 @@ from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
 from PyRT_Compare import REFERENCE_SIZE, compare_figures, write_sheet
-from PyRT_Rendering import ADAPTIVE_TOLERANCE
+from PyRT_Sampling import ADAPTIVE_TOLERANCE
 
 # out/ next to this script, wherever it is run from
 DIRECTORY = str(Path(__file__).resolve().parent / "out") + "/"

@@ -6,12 +6,12 @@ centre, and saves the image. Write your own integrator by subclassing ``Integrat
 overriding ``compute_color``.
 
 What render() needs besides its loop (worker processes on every core, several samples per
-pixel, the progress bar, checks) lives in PyRT_Rendering.py.
+pixel, the progress bar, checks) lives in PyRT_Rendering.py and the modules it uses.
 """
 from PyRT_Common import *
 from PyRT_Common import __all__ as _common_names, _restore_state, is_number
-from PyRT_Rendering import (ADAPTIVE_TOLERANCE, check_render, not_a_color, rendered_blocks,
-                            sampled_row)
+from PyRT_Rendering import check_render, rendered_blocks
+from PyRT_Sampling import ADAPTIVE_TOLERANCE, not_a_color, sampled_row
 
 __all__ = _common_names + [
     "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
@@ -49,6 +49,13 @@ class Integrator(ABC):
     def compute_color(self, ray):
         """The RGBColor arriving along ray."""
 
+    @property
+    def traces_rays(self):
+        """Whether render() makes the rows from compute_color's colours of camera rays, so
+        that PyRT may choose the rays of each pixel (samples per pixel, adaptive sampling):
+        unless render_row is overridden, as LazyIntegrator does to make its rows itself."""
+        return type(self).render_row is Integrator.render_row
+
     def render(self, workers=None, samples_per_pixel=1, progress=True, adaptive=False,
                tolerance=ADAPTIVE_TOLERANCE):
         """Renders every pixel of the scene's camera and saves the image.
@@ -67,7 +74,7 @@ class Integrator(ABC):
         adaptive: False gives every pixel samples_per_pixel rays. True first traces the
             ray through every pixel's centre, then samples_per_pixel rays in the pixels
             that differ from a neighbour by more than tolerance, a fraction of the
-            image's range as its PNG shows it (PyRT_Rendering.AdaptiveSampling), and
+            image's range as its PNG shows it (PyRT_Sampling.AdaptiveSampling), and
             saves a map of the rays per pixel. The loop below then receives the rows
             twice: the refined rows replace the centre rays' rows."""
         scene, workers, sampling = check_render(self, workers, samples_per_pixel, adaptive,
@@ -81,7 +88,7 @@ class Integrator(ABC):
     def render_row(self, y, samples_per_pixel=1):
         """Row y of the image: for every pixel x, the colour arriving along the ray from the
         camera through the pixel's centre, or the average over samples_per_pixel rays
-        spread inside the pixel (see PyRT_Rendering.sampled_row).
+        spread inside the pixel (see PyRT_Sampling.sampled_row).
 
         The colours come flat, [r0, g0, b0, r1, g1, b1, ...]: a flat list of floats becomes
         an array three times faster than a list of colours. Camera rays start at no

@@ -34,7 +34,7 @@ from benchmarks.timing import (OUT_DIR, SCENE_NAMES, figure_label, label, markdo
 from PyRT_Common import Normalize, RGBColor, Vector3D
 from PyRT_Core import Camera, Lambertian, Parallelogram, PointLight, Scene
 from PyRT_Integrators import Integrator, PhongIntegrator
-from PyRT_Rendering import usable_cores
+from PyRT_Workers import usable_cores
 
 # Targets: render() of Figure 1 in one process at most this multiple of the flat loop's
 # time; PhongIntegrator's own code at most this multiple; 1000 tiles at most this multiple

@@ -8,6 +8,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -173,3 +174,47 @@ def visible_lights(scene, hit):
             r = Length(to_light)
             seen.append((light, to_light / r, r * r))
     return seen
+
+
+def wait_for_file(path, seconds=60):
+    """Waits until another process has made the file at path (at most `seconds`)."""
+    deadline = time.monotonic() + seconds
+    while not os.path.exists(path) and time.monotonic() < deadline:
+        time.sleep(0.005)
+
+
+def image_point(ray, camera):
+    """(x + u, y + v): where the ray crosses the image plane, in pixels from the image's
+    top left corner (get_direction inverted)."""
+    d = ray.d
+    scale_y = math.tan(camera.vertical_fov / 2)
+    x_s = d.x / -d.z / (scale_y * camera.aspect_ratio)
+    y_s = d.y / -d.z / scale_y
+    return (x_s + 1) * camera.width / 2, (1 - y_s) * camera.height / 2
+
+
+class StepAt(Integrator):
+    """White left of the vertical line X = edge of the image plane (in pixels), black right
+    of it; records where every ray crosses the image plane."""
+
+    def __init__(self, filename_, edge):
+        super().__init__(filename_ + "_Step")
+        self.edge = edge
+        self.points = []
+
+    def compute_color(self, ray):
+        x, y = image_point(ray, self.scene.camera)
+        self.points.append((x, y))
+        return WHITE if x < self.edge else BLACK
+
+
+class Constant(Integrator):
+    """The same grey for every ray; counts its rays."""
+
+    def __init__(self, filename_):
+        super().__init__(filename_ + "_Constant")
+        self.calls = 0
+
+    def compute_color(self, ray):
+        self.calls += 1
+        return RGBColor(0.25, 0.5, 0.75)
