@@ -49,6 +49,7 @@ from PyRT_Core import (EDGE_TOLERANCE, UNIT_HIGH, UNIT_LOW, InfinitePlane, Lambe
 CLEARANCE = 1e-4
 LIGHT_MATCH = 1e-5
 ORIGIN_MARGIN = 1e-12
+_new = object.__new__
 # Renders of fewer camera rays than this per object list (camera, and each light) leave
 # the plain methods in place: the setup would cost more than it saves.
 MIN_RAYS_PER_LIST = 8
@@ -62,7 +63,7 @@ QUERY_FUNCTIONS = {
     "PyRT_Core.Scene.any_hit": "b4260ae7059b6f3d",
     "PyRT_Core.unit_direction": "a918a0f2d2309304",
     "PyRT_Core.Normalize": "41257e0e7f7f37cd",
-    "PyRT_Core.Length": "c459d28ec7b625fa",
+    "PyRT_Core.Length": "4b4d97bb903012e7",
     "PyRT_Core.Dot": "5968b1bc66a4e991",
     "PyRT_Common.unit_components": "4fddd540ec7253a7",
     "PyRT_Common.euclidean_length": "ed684f71ac87a76c",
@@ -73,9 +74,9 @@ INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
     Parallelogram: ("PyRT_Core.Parallelogram.intersect", "f0e341192758a0f6"),
 }
 PHONG_FUNCTIONS = {  # PhongIntegrator.compute_color and what it calls besides the queries
-    "PyRT_Integrators.PhongIntegrator.compute_color": "0c3a57a29d7ae810",
-    "PyRT_Integrators.shadow_ray": "6f23314f706ba70d",
-    "PyRT_Integrators.Length": "c459d28ec7b625fa",
+    "PyRT_Integrators.PhongIntegrator.compute_color": "4c6b5443bdfb642b",
+    "PyRT_Integrators.shadow_ray": "7c2282842ec80449",
+    "PyRT_Integrators.Length": "4b4d97bb903012e7",
     "PyRT_Integrators.Dot": "5968b1bc66a4e991",
     "PyRT_Core.Primitive.get_BRDF": "5009389ae19f8874",
     "PyRT_Core.Lambertian.get_value": "4a56e9c61b6d4186",
@@ -203,9 +204,10 @@ class AcceleratedQueries:
     cannot hit the object (its cone), nor can a ray from origin o with o.s > above (the
     flat object's plane lies beyond the ray's end, seen from o). Lists: from_camera, for
     rays that start at the camera (the origin); towards_light[i], for rays that end at
-    point light i (shadow rays), with the cones seen from the light, reversed, and the
-    shorter list of the entries left to test from an origin inside the light's clear_box;
-    everywhere, for any other ray, with nothing left out."""
+    point light i (shadow rays): (its x, y, z, its clear_box, the shorter list of the
+    entries left to test from an origin inside that box, its entries with the cones seen
+    from the light, reversed, i); everywhere, for any other ray, with nothing left
+    out."""
 
     def __init__(self, scene):
         self.scene = scene
@@ -227,9 +229,13 @@ class AcceleratedQueries:
                        for entry in self.everywhere]
             box, inside = clear_box(entries)
             self.towards_light.append((light.pos.x, light.pos.y, light.pos.z, box, inside,
-                                       entries))
+                                       entries, len(self.towards_light)))
+        # Shadow rays come light after light: any_hit tries the lights in the order of
+        # the rotation that starts with the light after the last one found.
+        self.rotations = [tuple(self.towards_light[i:] + self.towards_light[:i])
+                          for i in range(len(lights))]
         self.light_match = LIGHT_MATCH * scale
-        self.next_light = 0
+        self.next_lights = self.rotations[0] if lights else ()
 
     def closest_hit(self, ray):
         """Scene.closest_hit(ray)."""
@@ -248,10 +254,14 @@ class AcceleratedQueries:
             return HitData()
         test, k, index, t = nearest
         if test is None:  # the HitData of the object's own intersect
-            hit = k
-        else:
-            px, py, pz, nx, ny, nz = _HIT[test](k, ox, oy, oz, dx, dy, dz, t)
-            hit = HitData(True, Vector3D(px, py, pz), Vector3D(nx, ny, nz), t)
+            k.primitive_index = index
+            return k
+        # HitData(True, Vector3D(px, py, pz), Vector3D(nx, ny, nz), t, index), made without
+        # the three calls of __init__, which closest_hit would make for nearly every pixel
+        point, normal, hit = _new(Vector3D), _new(Vector3D), _new(HitData)
+        point.x, point.y, point.z, normal.x, normal.y, normal.z = _HIT[test](
+            k, ox, oy, oz, dx, dy, dz, t)
+        hit.has_hit, hit.hit_point, hit.normal, hit.hit_distance = True, point, normal, t
         hit.primitive_index = index
         return hit
 
@@ -294,34 +304,24 @@ class AcceleratedQueries:
                 entries = self.from_camera
             elif t_max < INFINITY:  # a shadow ray, when it ends at a light
                 ex, ey, ez = ox + dx * t_max, oy + dy * t_max, oz + dz * t_max
-                lights, near = self.towards_light, self.light_match
-                i = self.next_light  # shadow rays come light after light: try the next first
-                for _ in lights:
-                    if i == len(lights):
-                        i = 0
-                    x, y, z, (x0, x1, y0, y1, z0, z1), inside, all_entries = lights[i]
-                    i += 1
+                near = self.light_match
+                for x, y, z, (x0, x1, y0, y1, z0, z1), inside, all_entries, i in (
+                        self.next_lights):
                     if (-near <= x - ex <= near and -near <= y - ey <= near
                             and -near <= z - ez <= near):
-                        self.next_light = i
+                        rotations = self.rotations
+                        self.next_lights = rotations[i + 1 if i + 1 < len(rotations) else 0]
                         clear = x0 < ox < x1 and y0 < oy < y1 and z0 < oz < z1
                         entries = inside if clear else all_entries
                         break
-        return any_entry_hit(entries, ray, ox, oy, oz, dx, dy, dz, t_min, t_max)
-
-
-def any_entry_hit(entries, ray, ox, oy, oz, dx, dy, dz, t_min, t_max):
-    """Whether the ray from (ox, oy, oz) along the unit direction (dx, dy, dz) hits one of
-    the objects of entries in [t_min, t_max]; ray is the Ray itself, for the objects asked
-    through their own intersect (None will do when there are none)."""
-    for test, k, _, obj, ux, uy, uz, reach, sx, sy, sz, above in entries:
-        if dx * ux + dy * uy + dz * uz >= reach and ox * sx + oy * sy + oz * sz <= above:
-            if test is None:
-                if obj.intersect(ray).has_hit:
+        for test, k, _, obj, ux, uy, uz, reach, sx, sy, sz, above in entries:
+            if dx * ux + dy * uy + dz * uz >= reach and ox * sx + oy * sy + oz * sz <= above:
+                if test is None:
+                    if obj.intersect(ray).has_hit:
+                        return True
+                elif test(k, ox, oy, oz, dx, dy, dz, t_min, t_max) is not None:
                     return True
-            elif test(k, ox, oy, oz, dx, dy, dz, t_min, t_max) is not None:
-                return True
-    return False
+        return False
 
 
 class AcceleratedPhong:
@@ -341,7 +341,7 @@ class AcceleratedPhong:
         self.longest_shadow_ray = queries.light_match / SHADOW_EPSILON
         self.lights = [(light.pos.x, light.pos.y, light.pos.z, light.intensity.r,
                         light.intensity.g, light.intensity.b) + box + (inside, entries)
-                       for light, (_, _, _, box, inside, entries)
+                       for light, (_, _, _, box, inside, entries, _)
                        in zip(scene.pointLights, queries.towards_light)]
 
     def compute_color(self, ray):
@@ -361,7 +361,7 @@ class AcceleratedPhong:
         kd, ambient = brdf.kd, self.ambient
         kr, kg, kb = kd.r, kd.g, kd.b
         red, green, blue = kr * ambient.r, kg * ambient.g, kb * ambient.b
-        size = max(abs(px), abs(py), abs(pz)) + t
+        size = max(px, -px, py, -py, pz, -pz) + t
         if size == 0.0:  # shadow_ray takes the size from each light's distance
             return self.plain_color(ray)
         offset = OFFSET_SCALE * size

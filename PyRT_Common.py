@@ -149,10 +149,19 @@ def Cross(a, b):
     return v
 
 
+# Where x*x + y*y + z*z lies strictly between these, no square has overflowed, nor
+# underflowed by enough to change the sum: the formula holds as it is computed.
+SQUARES_LOW, SQUARES_HIGH = 2.0 ** -960, 2.0 ** 960
+
+
 def Length(v):
     """The Euclidean length |v| = sqrt(v . v), as the course computes it, at every scale
     (see euclidean_length)."""
-    return euclidean_length(v.x, v.y, v.z)
+    x, y, z = v.x, v.y, v.z
+    squares = x * x + y * y + z * z
+    if SQUARES_LOW < squares < SQUARES_HIGH:  # no square over- or underflowed
+        return sqrt(squares)
+    return euclidean_length(x, y, z)
 
 
 def Normalize(v):
@@ -161,11 +170,6 @@ def Normalize(v):
     unit = _new(Vector3D)
     unit.x, unit.y, unit.z = unit_components(v.x, v.y, v.z)
     return unit
-
-
-# Where x*x + y*y + z*z lies strictly between these, no square has overflowed, nor
-# underflowed by enough to change the sum: the formula holds as it is computed.
-SQUARES_LOW, SQUARES_HIGH = 2.0 ** -960, 2.0 ** 960
 
 
 def euclidean_length(x, y, z):
@@ -383,8 +387,7 @@ OFFSET_SCALE = 2.0 ** -32
 
 def shadow_ray(hit, target):
     """The shadow ray from the point of `hit` (a HitData) to the point `target`, a light's
-    position: scene.any_hit(shadow_ray(hit, light.pos)) tells whether something lies in
-    between.
+    position: a ray that meets an object only where the object lies between the two.
 
     A hit point lies on its surface only to within rounding, so a ray leaving it may hit
     that same surface again and shadow it in speckles ("shadow acne"). This ray starts a
@@ -393,24 +396,28 @@ def shadow_ray(hit, target):
     hit_distance): far above the rounding error of the point, about 1e-16 of its size, far
     below any detail of the scene, and the same at every scale, where a fixed EPSILON is
     too large for tiny scenes and too small for huge ones. (A hit at the world's origin,
-    where its own ray starts, takes its size from the distance to target.) The ray stops a millionth of
-    its length short of target (SHADOW_EPSILON), so that a light lying on a surface is not
-    hidden by that surface."""
+    where its own ray starts, takes its size from the distance to target.) The ray stops a
+    millionth of its length short of target (SHADOW_EPSILON), so that a light lying on a
+    surface is not hidden by that surface."""
     p, n = hit.hit_point, hit.normal
     px, py, pz, nx, ny, nz = p.x, p.y, p.z, n.x, n.y, n.z
-    size = max(abs(px), abs(py), abs(pz)) + hit.hit_distance
+    tx, ty, tz = target.x, target.y, target.z
+    size = max(px, -px, py, -py, pz, -pz) + hit.hit_distance  # the largest |coordinate|
     if size == 0.0:  # a hit at the origin, where its ray starts: the target gives the size
-        size = euclidean_length(target.x - px, target.y - py, target.z - pz)
+        size = euclidean_length(tx - px, ty - py, tz - pz)
     offset = OFFSET_SCALE * size
-    if (target.x - px) * nx + (target.y - py) * ny + (target.z - pz) * nz < 0.0:
-        offset = -offset  # target lies behind the surface: start below it
-    ox, oy, oz = px + nx * offset, py + ny * offset, pz + nz * offset
-    dx, dy, dz = target.x - ox, target.y - oy, target.z - oz
-    distance = euclidean_length(dx, dy, dz)
+    if (tx - px) * nx + (ty - py) * ny + (tz - pz) * nz >= 0.0:
+        ox, oy, oz = px + nx * offset, py + ny * offset, pz + nz * offset
+    else:  # target lies behind the surface: start below it
+        ox, oy, oz = px - nx * offset, py - ny * offset, pz - nz * offset
+    dx, dy, dz = tx - ox, ty - oy, tz - oz
+    squares = dx * dx + dy * dy + dz * dz
+    distance = sqrt(squares) if SQUARES_LOW < squares < SQUARES_HIGH else (
+        euclidean_length(dx, dy, dz))  # Length, without a Vector3D to make
     if distance == 0.0:  # target is the start itself: there is nothing in between
-        return Ray(Vector3D(ox, oy, oz), Vector3D(nx, ny, nz), 0.0, abs(offset))
+        return Ray(Vector3D(ox, oy, oz), Vector3D(nx, ny, nz), 0.0, offset)
     return Ray(Vector3D(ox, oy, oz), Vector3D(dx / distance, dy / distance, dz / distance),
-               distance * (1.0 - SHADOW_EPSILON), abs(offset))
+               distance * (1.0 - SHADOW_EPSILON), offset)
 
 # ------------------------------------------------------------------------------------------
 # Environment map

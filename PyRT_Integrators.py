@@ -211,9 +211,10 @@ class PhongIntegrator(Integrator):
             r = Length(to_light)
             if r * r == 0.0 or Dot(hit.normal, to_light) <= 0.0:
                 continue  # the light is at the point, behind the surface or on it
+            if scene.any_hit(shadow_ray(hit, light.pos)):
+                continue  # something lies between the point and the light
             wi = to_light / r
-            if not scene.any_hit(shadow_ray(hit, light.pos)):
-                f = brdf.get_value(wi, wo, hit.normal)
-                color = color + light.intensity.multiply(f) / (r * r)
+            f = brdf.get_value(wi, wo, hit.normal)
+            color = color + light.intensity.multiply(f) / (r * r)
         return color
         # ASSIGNMENT 1.4 END
