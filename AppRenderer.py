@@ -13,7 +13,9 @@ from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
 from PyRT_Compare import REFERENCE_SIZE, compare_figures, write_sheet
+# FRAMEWORK ONLY BEGIN
 from PyRT_Sampling import ADAPTIVE_TOLERANCE
+# FRAMEWORK ONLY END
 
 # out/ next to this script, wherever it is run from
 DIRECTORY = str(Path(__file__).resolve().parent / "out") + "/"
@@ -173,13 +175,15 @@ def compare_with_course(renders, folder, size, samples_per_pixel=1):
     return sheet
 
 
-def render(integrator, scene, workers=None, samples_per_pixel=1, adaptive=False,
-           tolerance=ADAPTIVE_TOLERANCE):
-    """Renders scene with integrator, prints the rendering time and returns the PNG path."""
+def render(integrator, scene, **options):
+    """Renders scene with integrator, prints the rendering time and returns the PNG path.
+
+    options: keyword arguments of Integrator.render() (workers, samples_per_pixel, adaptive,
+    tolerance), none for its defaults: the course's handout has a render() that takes no
+    arguments, and runs this script too."""
     integrator.add_scene(scene)
     start = time.perf_counter()
-    integrator.render(workers=workers, samples_per_pixel=samples_per_pixel,
-                      adaptive=adaptive, tolerance=tolerance)
+    integrator.render(**options)
     print(f"Rendering time: {time.perf_counter() - start:.2f} s")
     png = integrator.get_filename() + ".png"
     print(f"Saved {png} (and .npy, .hdr)")
@@ -313,6 +317,7 @@ def parse_args(argv):
                              "Figure 4 uses 5)")
     parser.add_argument("--out", default=DIRECTORY,
                         help="folder for the images (default: out/ next to this script)")
+    # FRAMEWORK ONLY BEGIN
     parser.add_argument("--workers", type=positive_arg(int), default=None,
                         help="processes that render (default: all cores; 1: this process "
                              "only, needed to stop at breakpoints)")
@@ -329,6 +334,7 @@ def parse_args(argv):
                              "as a fraction of the image's range in the PNG, before both "
                              f"get more rays (default {ADAPTIVE_TOLERANCE}, about 8 of the "
                              "PNG's 255 steps; smaller is more accurate and slower)")
+    # FRAMEWORK ONLY END
     parser.add_argument("--no-window", action="store_true",
                         help="save the image without showing it")
     parser.add_argument("--all-figures", action="store_true",
@@ -337,12 +343,31 @@ def parse_args(argv):
                              "with the course's and show them side by side in "
                              f"out/{SHEET_FILENAME}")
     args = parser.parse_args(argv)
+    # FRAMEWORK ONLY BEGIN
     if args.adaptive and args.spp == 1:
         parser.error("argument --adaptive: needs --spp N with N of 2 or more, the rays the "
                      "pixels at edges get")
     if args.tolerance is not None and not args.adaptive:
         parser.error("argument --tolerance: only applies with --adaptive")
+    # FRAMEWORK ONLY END
     return args
+
+
+def render_options(args):
+    """The keyword arguments of Integrator.render() that the command line asks for: only
+    those that differ from render()'s defaults."""
+    options = {}
+    # FRAMEWORK ONLY BEGIN
+    if args.workers is not None:
+        options["workers"] = args.workers
+    if args.spp != 1:
+        options["samples_per_pixel"] = args.spp
+    if args.adaptive:
+        options["adaptive"] = True
+    if args.tolerance is not None:
+        options["tolerance"] = args.tolerance
+    # FRAMEWORK ONLY END
+    return options
 
 
 def main(argv=None):
@@ -352,14 +377,14 @@ def main(argv=None):
         jobs = [(figure_integrator(entry, base), SCENES[entry[2]]) for entry in FIGURES]
     else:
         jobs = [(make_integrator(args.integrator, base, args.max_depth), SCENES[args.scene])]
-    tolerance = ADAPTIVE_TOLERANCE if args.tolerance is None else args.tolerance
-    pngs = [render(integrator, make_scene(args.width, args.height), args.workers, args.spp,
-                   args.adaptive, tolerance)
+    options = render_options(args)
+    pngs = [render(integrator, make_scene(args.width, args.height), **options)
             for integrator, make_scene in jobs]
     shown = pngs[-1]
     if args.all_figures:
         renders = {reference_name(entry): png for entry, png in zip(FIGURES, pngs)}
-        sheet = compare_with_course(renders, args.out, (args.width, args.height), args.spp)
+        sheet = compare_with_course(renders, args.out, (args.width, args.height),
+                                    options.get("samples_per_pixel", 1))
         shown = sheet or shown
     if not args.no_window:
         show(shown)
