@@ -1,0 +1,240 @@
+"""The course kit of Practice 1: the students' handout, made from this framework, and the
+grader of what they hand in.
+
+    python course_kit.py handout DIR        writes the students' base code into DIR
+    python course_kit.py grade SUBMISSIONS --out RESULTS [--jobs N] [--force] [--config F]
+    python course_kit.py expected           remakes kit/expected/practice1.npz, on purpose only
+
+The parts that students write are marked in the finished framework, each block of solution
+between two comment lines at the same indentation:
+
+    # ASSIGNMENT 1.2 BEGIN
+    ...the solution...
+    # ASSIGNMENT 1.2 END
+
+The handout has the course's stub in its place (STUBS below, the 2025-26 handout's), at the
+block's indentation. Blocks between "# FRAMEWORK ONLY BEGIN" and "# FRAMEWORK ONLY END" are
+left out of the handout entirely: they use machinery that the handout does not ship. An
+unbalanced, nested, misspelt or unknown marker stops the kit with the file and the line.
+
+docs/course-kit.md is the teaching assistants' guide.
+"""
+import argparse
+import re
+import sys
+import textwrap
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent
+KIT = REPO / "kit"
+CHECKS = KIT / "checks"
+EXPECTED = KIT / "expected" / "practice1.npz"
+
+# What students write in, made from the framework by replacing the marked blocks
+COURSE_MODULES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppRenderer.py")
+# What AppRenderer.py needs besides them, shipped as it is
+SHIPPED_AS_IS = ("PyRT_Compare.py", ".vscode/launch.json", ".vscode/settings.json")
+# The course's figures, which PyRT_Compare.py finds in tests/reference/
+FIGURES = ("figure1_phong.png", "figure2_lazy.png", "figure3_intersection.png",
+           "figure4_depth.png", "figure4_normal.png", "figure5_phong.png")
+# The students' checks: kit/checks/<name> goes to tests/<name> in the handout
+CHECK_FILES = ("practice1_checks.py", "test_practice1.py")
+# The packages the handout needs, with the framework's version bounds
+HANDOUT_PACKAGES = ("numpy", "opencv-python-headless", "matplotlib", "pytest")
+PYTEST_INI = "[pytest]\ntestpaths = tests\npythonpath = .\naddopts = -ra\n"
+
+# ------------------------------------------------------------------------------------------
+# The course's stubs (2025-26 handout)
+# ------------------------------------------------------------------------------------------
+RENDER_STUB = '''\
+def render(self):
+    # ASSIGNMENTS 1.1 AND 1.2: YOU MUST CHANGE THIS METHOD.
+    # For now it paints every pixel of the image GREEN.
+    cam = self.scene.camera
+    print("Rendering " + self.get_filename())
+    for x in range(cam.width):
+        for y in range(cam.height):
+            pixel = GREEN
+            self.scene.set_pixel(pixel, x, y)
+        print(f"\\r  progress: {100 * (x + 1) / cam.width:.0f}%", end="")
+    print()
+    self.scene.save_image(self.get_filename())
+'''
+# A body stub: the course's comment, then what the method does until the student writes it
+BODY_STUBS = {"any_hit": "return False", "compute_color": "pass"}
+# Where each step's blocks may stand: "class" for whole methods, else the methods whose
+# body they are
+STEP_PLACES = {"1.1-1.2": {"class"}, "1.2": {"any_hit", "compute_color"},
+               "1.3": {"compute_color"}, "1.4": {"compute_color"}}
+FRAMEWORK_ONLY = "FRAMEWORK ONLY"
+
+MARKER = re.compile(r"(?P<indent>[ ]*)# (?P<kind>ASSIGNMENT (?P<step>\S+)|FRAMEWORK ONLY) "
+                    r"(?P<edge>BEGIN|END)")
+# Anything that looks like a marker, to catch misspelt ones
+LOOKS_LIKE_MARKER = re.compile(r"#.*\b(ASSIGNMENTS?|FRAMEWORK\s*ONLY)\b.*\b(BEGIN|END)\b",
+                               re.IGNORECASE)
+DEF = re.compile(r"(?P<indent>[ ]*)(async )?def (?P<name>\w+)\(")
+
+
+class MarkerError(ValueError):
+    """A solution marker that the kit cannot turn into a handout: unbalanced, nested,
+    misspelt, of an unknown step, or in a place where that step has no stub."""
+
+
+def _stub(step, place, indent):
+    """The lines that replace a block of `step` standing at `place` (see STEP_PLACES)."""
+    if place == "class":
+        text = RENDER_STUB
+    else:
+        text = f"# ASSIGNMENT {step}: PUT YOUR CODE HERE\n{BODY_STUBS[place]}\n"
+    return textwrap.indent(text, indent).splitlines(keepends=True)
+
+
+def _place(lines, index, indent):
+    """Where the block starting at lines[index] stands: the name of the method whose body it
+    is, or "class" when it stands level with the methods of a class."""
+    for line in reversed(lines[:index]):
+        found = DEF.match(line)
+        if found and len(found["indent"]) < len(indent):
+            return found["name"]
+        if line.strip() and len(line) - len(line.lstrip(" ")) < len(indent):
+            return "class" if line.lstrip().startswith("class ") else line.strip()
+    return "module"
+
+
+def strip_solution(source, filename):
+    """The handout's version of a framework module: every marked block replaced by its
+    stub, or dropped when FRAMEWORK ONLY. Raises MarkerError naming the file and line."""
+    lines = source.splitlines(keepends=True)
+    out, block, render_stubs = [], None, 0  # block: (kind, step, indent, first line number)
+    for number, line in enumerate(lines, 1):
+        where = f"{filename}, line {number}"
+        marker = MARKER.fullmatch(line.rstrip("\n"))
+        if marker is None:
+            if LOOKS_LIKE_MARKER.search(line):
+                raise MarkerError(f"{where}: not a marker the kit knows: {line.strip()!r}; "
+                                  "markers read '# ASSIGNMENT <step> BEGIN' (or END) and "
+                                  "'# FRAMEWORK ONLY BEGIN' (or END)")
+            if block is None:
+                out.append(line)
+            continue
+        kind = FRAMEWORK_ONLY if marker["step"] is None else "ASSIGNMENT"
+        step, indent = marker["step"], marker["indent"]
+        if marker["edge"] == "BEGIN":
+            if block is not None:
+                raise MarkerError(f"{where}: a block begins inside the block begun at line "
+                                  f"{block[3]}; blocks do not nest")
+            if kind == "ASSIGNMENT":
+                if step not in STEP_PLACES:
+                    raise MarkerError(f"{where}: unknown step {step!r}; the steps are "
+                                      + ", ".join(STEP_PLACES))
+                place = _place(lines, number - 1, indent)
+                if place not in STEP_PLACES[step]:
+                    raise MarkerError(f"{where}: a block of step {step} in {place!r}, where "
+                                      f"that step has no stub (it may stand in: "
+                                      + ", ".join(sorted(STEP_PLACES[step])) + ")")
+                render_stubs += place == "class"
+                if render_stubs > 1:
+                    raise MarkerError(f"{where}: a second block of step {step}; one block "
+                                      "holds all of render's methods")
+                out.extend(_stub(step, place, indent))
+            block = (kind, step, indent, number)
+            continue
+        if block is None or (kind, step, indent) != block[:3]:
+            begun = "no block is open" if block is None else (
+                f"the block begun at line {block[3]} is {block[0]} {block[1] or ''}".strip()
+                + f" at indentation {len(block[2])}")
+            raise MarkerError(f"{where}: {line.strip()!r} does not close a block: {begun}")
+        if kind == FRAMEWORK_ONLY and out and not out[-1].strip() and (
+                number < len(lines) and not lines[number].strip()):
+            out.pop()  # the blank lines around a dropped block would double
+        block = None
+    if block is not None:
+        raise MarkerError(f"{filename}, line {block[3]}: the block begun here is never "
+                          "closed")
+    return "".join(out)
+
+
+def _requirements():
+    """requirements.txt of the handout: the framework's lines for HANDOUT_PACKAGES."""
+    lines = []
+    for name in ("requirements.txt", "requirements-dev.txt"):
+        for line in (REPO / name).read_text(encoding="utf-8").splitlines():
+            package = re.match(r"[A-Za-z0-9_.-]+", line)
+            if package and package[0].lower() in HANDOUT_PACKAGES:
+                lines.append(line)
+    return "# What the handout needs: pip install -r requirements.txt\n" + "\n".join(
+        lines) + "\n"
+
+
+def handout_files():
+    """Every file of the handout, {relative path: bytes}, sorted by path."""
+    files = {name: strip_solution((REPO / name).read_text(encoding="utf-8"), name).encode()
+             for name in COURSE_MODULES}
+    files.update({name: (REPO / name).read_bytes() for name in SHIPPED_AS_IS})
+    files.update({f"tests/reference/{name}": (REPO / "tests" / "reference" / name).read_bytes()
+                  for name in FIGURES})
+    files.update({f"tests/{name}": (CHECKS / name).read_bytes() for name in CHECK_FILES})
+    files["tests/expected/practice1.npz"] = EXPECTED.read_bytes()
+    files["requirements.txt"] = _requirements().encode()
+    files["pytest.ini"] = PYTEST_INI.encode()
+    files["out/.gitkeep"] = b""
+    return dict(sorted(files.items()))
+
+
+def write_handout(directory):
+    """Writes the handout into directory, which must be empty or not exist yet."""
+    directory = Path(directory)
+    if directory.exists() and any(directory.iterdir()):
+        raise FileExistsError(f"{directory} is not empty; the handout goes into a new folder")
+    for name, content in handout_files().items():
+        path = directory / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(content)
+    return directory
+
+
+# ------------------------------------------------------------------------------------------
+# Command line
+# ------------------------------------------------------------------------------------------
+def parse_args(argv):
+    parser = argparse.ArgumentParser(
+        prog="course_kit.py", description="The course kit of Practice 1: the students' "
+        "handout and the grader. See docs/course-kit.md.")
+    commands = parser.add_subparsers(dest="command", required=True)
+    handout = commands.add_parser("handout", help="write the students' base code into DIR")
+    handout.add_argument("directory", metavar="DIR", help="a new or empty folder")
+    grade = commands.add_parser("grade", help="grade every submission in a folder")
+    grade.add_argument("submissions", metavar="SUBMISSIONS",
+                       help="a folder of submissions, each a folder or a .zip")
+    grade.add_argument("--out", required=True, metavar="RESULTS",
+                       help="where grades.csv and a folder per submission go")
+    grade.add_argument("--jobs", type=int, default=None,
+                       help="submissions graded at once (default: one per core)")
+    grade.add_argument("--force", action="store_true",
+                       help="grade again the submissions already graded")
+    grade.add_argument("--config", default=None, metavar="FILE",
+                       help="points and limits (default: kit/grading.toml)")
+    commands.add_parser("expected", help="remake kit/expected/practice1.npz from the "
+                        "finished framework (only when its images change on purpose)")
+    return parser.parse_args(argv)
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    if args.command == "handout":
+        try:
+            print(f"Wrote the handout into {write_handout(args.directory)}")
+        except (MarkerError, FileExistsError) as error:
+            sys.exit(f"course_kit.py handout: {error}")
+    elif args.command == "grade":
+        import course_grader
+        return course_grader.main(args)
+    else:
+        import course_references
+        print(f"Wrote {course_references.write_expected(EXPECTED)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
