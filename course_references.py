@@ -1,0 +1,214 @@
+"""The expected data of the students' checks, rendered by the finished framework into
+kit/expected/practice1.npz (by `python course_kit.py expected`, and only on purpose: when
+the framework's images change by an intended change, with the reason in the commit).
+
+For each image of practice1_checks.IMAGES, at practice1_checks.SIZE pixels:
+- <name>: the image that the framework's own render() makes, the expected image;
+- <name>.seam_pixels and <name>.seam_colors: the seams, (y, x) of each pixel whose colour
+  changes when its ray leaves the pixel's centre by SEAM_WIDTH of a pixel (up, down, left
+  or right), or, in a Phong image, when its shadow rays ignore the first EPSILON of their
+  way as the course's Ray does; and for each such pixel the colours of all those rays;
+- <name>.mistake.<mistake>: the image of a known mistake (practice1_checks.LIKELY): rays
+  through the pixels' corners for every ray-traced image, and the mistakes of
+  practice1_checks.RENDERED_MISTAKES, rendered by the variants of the framework's
+  integrators below.
+
+The file is written the same, byte for byte, whenever the framework's images are.
+"""
+import io
+import sys
+import tempfile
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parent
+sys.path.insert(0, str(REPO / "kit" / "checks"))
+
+import practice1_checks as checks  # noqa: E402  (found through the line above)
+import PyRT_Integrators  # noqa: E402
+from PyRT_Common import BLACK, EPSILON, Length, Ray, RGBColor, Vector3D  # noqa: E402
+
+# The rays of a seam pixel's alternatives: its centre moved by SEAM_WIDTH of a pixel
+SEAM_OFFSETS = [(checks.SEAM_WIDTH, 0.0), (-checks.SEAM_WIDTH, 0.0),
+                (0.0, checks.SEAM_WIDTH), (0.0, -checks.SEAM_WIDTH)]
+CORNER = (-0.5, -0.5)  # from a pixel's centre to its top-left corner
+ZIP_DATE = (1980, 1, 1, 0, 0, 0)  # the earliest a zip file holds: no date of writing
+
+
+# ------------------------------------------------------------------------------------------
+# The variants of the framework's integrators that make the mistakes' images
+# ------------------------------------------------------------------------------------------
+class DepthVariant(PyRT_Integrators.DepthIntegrator):
+    """Depth as the assignment defines it, or, with clamped False, without the max(.., 0)."""
+
+    def __init__(self, filename_, max_depth_, clamped=True):
+        super().__init__(filename_, max_depth_)
+        self.clamped = clamped
+
+    def compute_color(self, ray):
+        hit = self.scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        c = 1.0 - hit.hit_distance / self.max_depth
+        c = max(c, 0.0) if self.clamped else c
+        return RGBColor(c, c, c)
+
+
+class NormalVariant(PyRT_Integrators.NormalIntegrator):
+    """Normal as the assignment defines it, or, with mapped False, the normal itself."""
+
+    def __init__(self, filename_, mapped=True):
+        super().__init__(filename_)
+        self.mapped = mapped
+
+    def compute_color(self, ray):
+        hit = self.scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        n = hit.normal
+        if self.mapped:
+            return RGBColor((n.x + 1.0) / 2.0, (n.y + 1.0) / 2.0, (n.z + 1.0) / 2.0)
+        return RGBColor(n.x, n.y, n.z)
+
+
+class PhongVariant(PyRT_Integrators.PhongIntegrator):
+    """Phong as the assignment describes it, written the way a student writes it (a shadow
+    ray Ray(hit point, wi, r) per light), with parts that can be left out: the ambient
+    term, the shadows, the division by r^2."""
+
+    def __init__(self, filename_, ambient=True, shadows=True, inverse_square=True):
+        super().__init__(filename_)
+        self.ambient, self.shadows, self.inverse_square = ambient, shadows, inverse_square
+
+    def compute_color(self, ray):
+        scene = self.scene
+        hit = scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        brdf = scene.object_list[hit.primitive_index].get_BRDF()
+        color = brdf.kd.multiply(scene.i_a) if self.ambient else RGBColor(0.0, 0.0, 0.0)
+        for light in scene.pointLights:
+            to_light = light.pos - hit.hit_point
+            r = Length(to_light)
+            wi = to_light / r
+            if self.shadows and scene.any_hit(Ray(hit.hit_point, wi, r)):
+                continue
+            f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
+            color = color + light.intensity.multiply(f) / (r * r if self.inverse_square
+                                                           else 1.0)
+        return color
+
+
+def mistake_integrator(mistake, filename):
+    """The integrator that makes the image of a mistake of RENDERED_MISTAKES."""
+    return {
+        "unclamped_depth": lambda: DepthVariant(filename, 5, clamped=False),
+        "unmapped_normals": lambda: NormalVariant(filename, mapped=False),
+        "no_ambient": lambda: PhongVariant(filename, ambient=False),
+        "no_shadows": lambda: PhongVariant(filename, shadows=False),
+        "no_inverse_square": lambda: PhongVariant(filename, inverse_square=False),
+    }[mistake]()
+
+
+# ------------------------------------------------------------------------------------------
+# Rendering
+# ------------------------------------------------------------------------------------------
+def framework_image(name, folder):
+    """The expected image of IMAGES[name]: the framework's integrator and its render()."""
+    integrator = checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
+    scene = checks.SCENES[checks.IMAGES[name].scene]()
+    integrator.add_scene(scene)
+    integrator.render(workers=1, progress=False)
+    return np.array(scene.rendered_image, dtype=float)
+
+
+def traced_image(integrator, scene, offset=(0.0, 0.0)):
+    """The image of compute_color for a ray from the camera through each pixel's centre
+    moved by offset = (dx, dy) pixels, traced one pixel at a time."""
+    integrator.add_scene(scene)
+    camera = scene.camera
+    image = np.zeros((camera.height, camera.width, 3))
+    dx, dy = offset
+    for y in range(camera.height):
+        for x in range(camera.width):
+            direction = camera.get_direction(x + dx, y + dy)
+            color = integrator.compute_color(Ray(Vector3D(0.0, 0.0, 0.0), direction))
+            image[y, x] = (color.r, color.g, color.b)
+    return image
+
+
+def course_shadow_rays(scene):
+    """scene, whose any_hit now ignores the first EPSILON of every ray, as the course's Ray
+    does by default (its t_min): what a shadow ray Ray(hit point, wi, r) sees."""
+    plain = scene.any_hit
+
+    def any_hit(ray):
+        return plain(Ray(ray.o, ray.d, ray.t_max, max(ray.t_min, EPSILON)))
+
+    scene.any_hit = any_hit
+    return scene
+
+
+def seams(name, expected, folder):
+    """(seam_pixels, seam_colors) of IMAGES[name], as the module docstring says."""
+    info = checks.IMAGES[name]
+    if info.integrator == "LazyIntegrator":
+        return np.zeros((0, 2), np.int64), np.zeros((0, 0, 3))
+
+    def scene():
+        return checks.SCENES[info.scene]()
+
+    integrator = checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
+    alternatives = [traced_image(integrator, scene(), offset) for offset in SEAM_OFFSETS]
+    if info.integrator == "PhongIntegrator":
+        alternatives.append(traced_image(integrator, course_shadow_rays(scene())))
+    stack = np.stack(alternatives)  # (K, height, width, 3)
+    differs = np.zeros(expected.shape[:2], bool)
+    for alternative in stack:
+        differs |= ~checks.close(alternative, expected, checks.SEAM_TOLERANCE)
+    pixels = np.argwhere(differs)
+    return pixels, stack[:, pixels[:, 0], pixels[:, 1]].transpose(1, 0, 2)
+
+
+def expected_arrays():
+    """Every array of kit/expected/practice1.npz, by key."""
+    arrays = {}
+    with tempfile.TemporaryDirectory() as folder:
+        for name, info in checks.IMAGES.items():
+            expected = arrays[name] = framework_image(name, folder)
+            arrays[f"{name}.seam_pixels"], arrays[f"{name}.seam_colors"] = seams(
+                name, expected, folder)
+            if info.integrator == "LazyIntegrator":
+                continue
+            integrator = checks.make_integrator(name, str(Path(folder) / name),
+                                                PyRT_Integrators)
+            arrays[f"{name}.mistake.corner_rays"] = traced_image(
+                integrator, checks.SCENES[info.scene](), CORNER)
+            for mistake in checks.RENDERED_MISTAKES.get(name, ()):
+                arrays[f"{name}.mistake.{mistake}"] = traced_image(
+                    mistake_integrator(mistake, str(Path(folder) / mistake)),
+                    checks.SCENES[info.scene]())
+    return arrays
+
+
+def npz_bytes(arrays):
+    """arrays as an .npz file (what np.load reads), the same bytes for the same arrays:
+    sorted by key, compressed, with no date."""
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w") as archive:
+        for key in sorted(arrays):
+            member = io.BytesIO()
+            np.save(member, arrays[key], allow_pickle=False)
+            info = zipfile.ZipInfo(key + ".npy", date_time=ZIP_DATE)
+            info.compress_type = zipfile.ZIP_DEFLATED
+            archive.writestr(info, member.getvalue())
+    return buffer.getvalue()
+
+
+def write_expected(path):
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_bytes(npz_bytes(expected_arrays()))
+    return path
