@@ -386,14 +386,20 @@ def _check_image(check, folder):
     verdict = judge(image, check.name, data)
     if verdict.right:
         return check.succeed()
+    reason = verdict.reason
     if check.name == "lazy" and not np.any(image):
+        # LazyIntegrator.compute_color returns BLACK: once render() asks compute_color
+        # (Assignment 1.2), the Lazy image is black, and 1.1 lives on in 1.2's loop
         probe = run_check("probe", folder.parent / "lazy_loop")
         if probe.passed:
             return check.succeed("LazyIntegrator renders black because render() now asks "
                                  "compute_color, as Assignment 1.2 asks; its loop is the "
                                  "loop of 1.1, finished")
+        reason = ("the image is black, which is right once render() asks compute_color "
+                  "(Assignment 1.2), but render() fails the check of its rays: "
+                  + probe.reason)
     check.images = write_pngs(folder, image, data[check.name], verdict.wrong)
-    return check.fail(verdict.reason, verdict.details + "\n  images: " + ", ".join(
+    return check.fail(reason, verdict.details + "\n  images: " + ", ".join(
         str(path) for path in check.images.values()))
 
 

@@ -1,0 +1,242 @@
+"""One step of the students' checks run on one submission's working copy, in a process of
+its own, for the grader (course_grader.py).
+
+The processes are forked by a step server, `python -I -B course_isolation.py`, that has
+loaded what every course module loads (numpy, OpenCV, matplotlib) once, so that a step's
+process starts at once; each is still new, and shares nothing with the others. The server
+reads one request per line on its standard input (JSON: workdir, step, result, log,
+limits), forks the step's process, waits for it at most the step's wall-clock limit
+(killing it then), and answers one line: {"code": its exit code, negative for a signal,
+"timed_out": true or false}.
+
+Before the student's code is imported, the step's process
+- sends what it prints into the log file, outside the working copy,
+- lowers its limits of processor time, address space and file size (what it prints
+  included: a process that prints without end is killed), and writes no core file,
+- keeps on its import path only the working copy, its tests/ (the checks) and Python's
+  own libraries,
+- installs an audit hook that refuses, and notes, every write outside the working copy
+  and every start of another process.
+At the end it writes the checks' verdicts and the refusals as JSON to the result file,
+outside the working copy. A process that ends before that (os._exit, a crash, a limit)
+leaves no result, and the grader says why.
+
+This keeps a submission from disturbing the others by accident. It is no security
+sandbox: code that sets out to escape can (see docs/course-kit.md).
+"""
+import json
+import os
+import resource
+import signal
+import subprocess
+import sys
+import time
+import traceback
+from pathlib import Path
+
+# What every course module imports, loaded once by the step server
+PRELOADED = ("numpy", "cv2", "matplotlib.pyplot")
+# The step server's environment: a few of the grader's variables, no window, and one
+# thread for the numerical libraries, as each submission has processes of its own
+KEPT_VARIABLES = ("PATH", "HOME", "LANG", "LC_ALL", "TMPDIR")
+ENVIRONMENT = {"MPLBACKEND": "Agg", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
+               "MKL_NUM_THREADS": "1"}
+POLL_SECONDS = 0.01  # how often the server looks whether a step's process has ended
+# Audit events that write, with the number of paths they name first, and that start a
+# process
+WRITING_EVENTS = {"os.remove": 1, "os.rmdir": 1, "os.mkdir": 1, "os.rename": 2,
+                  "os.link": 2, "os.symlink": 2, "os.truncate": 1, "os.chmod": 1,
+                  "os.chown": 1, "os.utime": 1, "shutil.rmtree": 1}
+PROCESS_EVENTS = {"subprocess.Popen", "os.system", "os.exec", "os.posix_spawn", "os.spawn",
+                  "os.fork", "os.forkpty"}
+WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_APPEND | os.O_CREAT | os.O_TRUNC
+
+
+# ------------------------------------------------------------------------------------------
+# In the step's process
+# ------------------------------------------------------------------------------------------
+def set_limits(limits):
+    """Lowers this process's limits: processor time, address space, the size of any file
+    it writes (its output included), no core files."""
+    cpu = int(limits["cpu_seconds"])
+    resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
+    memory = int(limits["memory_mib"]) * 1024 * 1024
+    resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+    output = int(limits["output_kib"]) * 1024
+    resource.setrlimit(resource.RLIMIT_FSIZE, (output, output))
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+
+
+def guard(workdir, refused):
+    """An audit hook that refuses, with a PermissionError, writes to paths outside workdir
+    and the start of processes, and notes each refusal in the list `refused`."""
+    root = os.path.realpath(workdir)
+
+    def outside(path):
+        if isinstance(path, int) or path is None:  # a file descriptor, already open
+            return None
+        name = os.path.realpath(os.fsdecode(path))
+        if name == os.devnull or os.path.commonpath([name, root]) == root:
+            return None
+        return name
+
+    def hook(event, args):
+        if event == "open":
+            paths = [args[0]] if args[2] & WRITE_FLAGS else []
+        elif event in WRITING_EVENTS:
+            paths = list(args[:WRITING_EVENTS[event]])
+        elif event in PROCESS_EVENTS:
+            refused.append(f"started a process ({event})")
+            raise PermissionError(f"grading: {event} is not allowed while grading")
+        else:
+            return
+        for path in paths:
+            name = outside(path)
+            if name is not None:
+                refused.append(f"wrote outside its working copy: {name} ({event})")
+                raise PermissionError(f"grading: writing {name} outside the working copy "
+                                      "is not allowed")
+
+    return hook
+
+
+def _python_paths():
+    """The entries of sys.path that hold Python's own libraries and installed packages."""
+    prefixes = {os.path.realpath(sys.prefix), os.path.realpath(sys.base_prefix)}
+    return [path for path in sys.path if path and any(
+        os.path.realpath(path).startswith(prefix + os.sep) for prefix in prefixes)]
+
+
+def step_process(workdir, step, result_path, log_path, limits):
+    """The body of a step's process: see the module's docstring."""
+    log = os.open(log_path, os.O_WRONLY | os.O_APPEND)
+    os.dup2(log, 1)
+    os.dup2(log, 2)
+    signal.signal(signal.SIGXFSZ, signal.SIG_DFL)  # Python ignores it: a write would fail
+    result = open(result_path, "w", encoding="utf-8")
+    set_limits(limits)
+    os.chdir(workdir)
+    sys.path[:] = [workdir, os.path.join(workdir, "tests")] + _python_paths()
+    import practice1_checks
+    refused = []
+    sys.addaudithook(guard(workdir, refused))
+    checks = practice1_checks.run_step(step)
+    json.dump({"checks": [{"name": check.name, "title": check.title,
+                           "passed": check.passed, "reason": check.reason,
+                           "message": check.message, "error": check.error,
+                           "images": {kind: str(path) for kind, path in check.images.items()}}
+                          for check in checks],
+               "refused": refused}, result)
+    result.close()
+
+
+# ------------------------------------------------------------------------------------------
+# The step server
+# ------------------------------------------------------------------------------------------
+def serve():
+    """The step server's loop: see the module's docstring."""
+    for name in PRELOADED:
+        __import__(name)
+    for line in sys.stdin:
+        request = json.loads(line)
+        pid = os.fork()
+        if pid == 0:
+            _child(request)
+        code, timed_out = _wait(pid, request["limits"]["wall_seconds"])
+        print(json.dumps({"code": code, "timed_out": timed_out}), flush=True)
+
+
+def _child(request):
+    """The forked step's process: runs step_process and ends, never returning."""
+    code = 1
+    try:
+        os.dup2(os.open(os.devnull, os.O_RDONLY), 0)
+        step_process(request["workdir"], request["step"], request["result"],
+                     request["log"], request["limits"])
+        code = 0
+    except SystemExit as error:
+        code = error.code if isinstance(error.code, int) else 1
+    except BaseException:
+        traceback.print_exc()
+    finally:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(code)
+
+
+def _wait(pid, seconds):
+    """(exit code, timed out) of the process pid, killed after seconds."""
+    deadline = time.monotonic() + seconds
+    while True:
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            return os.waitstatus_to_exitcode(status), False
+        if time.monotonic() > deadline:
+            os.kill(pid, signal.SIGKILL)
+            _, status = os.waitpid(pid, 0)
+            return os.waitstatus_to_exitcode(status), True
+        time.sleep(POLL_SECONDS)
+
+
+# ------------------------------------------------------------------------------------------
+# In the grader
+# ------------------------------------------------------------------------------------------
+class StepServer:
+    """A step server process (see the module's docstring), used by one thread at a time."""
+
+    def __init__(self):
+        environment = {name: os.environ[name] for name in KEPT_VARIABLES
+                       if name in os.environ}
+        environment.update(ENVIRONMENT)
+        self.process = subprocess.Popen(
+            [sys.executable, "-I", "-B", str(Path(__file__).resolve())],
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=environment, text=True)
+
+    def close(self):
+        self.process.stdin.close()
+        self.process.wait()
+
+    def run_step(self, workdir, scratch, step, limits):
+        """Runs the checks of step on workdir in a process of its own, its log and result
+        in scratch; returns (the result, or None; why there is none; what it printed)."""
+        result_path, log_path = Path(scratch) / f"{step}.json", Path(scratch) / f"{step}.log"
+        result_path.write_bytes(b"")
+        log_path.write_bytes(b"")
+        request = {"workdir": str(workdir), "step": step, "result": str(result_path),
+                   "log": str(log_path), "limits": limits}
+        self.process.stdin.write(json.dumps(request) + "\n")
+        self.process.stdin.flush()
+        answer = self.process.stdout.readline()
+        if not answer:
+            raise RuntimeError("the grader's step server ended unexpectedly")
+        answer = json.loads(answer)
+        output = log_path.read_bytes().decode("utf-8", "replace")
+        data = result_path.read_bytes()
+        if answer["timed_out"]:
+            return None, (f"did not finish within {limits['wall_seconds']} s, the time "
+                          "limit of a step: the code hangs or is far too slow"), output
+        if data:
+            return json.loads(data), None, output
+        return None, _why_no_result(answer["code"], limits, output), output
+
+
+def _why_no_result(code, limits, output):
+    if code in (-signal.SIGXCPU, -signal.SIGKILL):
+        return (f"used more than {limits['cpu_seconds']} s of processor time, the limit of "
+                "a step: the code hangs or is far too slow")
+    if code == -signal.SIGXFSZ:
+        return (f"printed more than {limits['output_kib']} KiB, the limit of a step's "
+                "output (or wrote a file that large): the code prints without end")
+    if "MemoryError" in output:
+        return f"ran out of memory: a step may use {limits['memory_mib']} MiB"
+    if code < 0:
+        return f"the process was killed by {signal.Signals(-code).name}"
+    return (f"the process ended (exit code {code}) before the checks were done: the code "
+            "called os._exit, or ended the process some other way")
+
+
+if __name__ == "__main__":
+    serve()
