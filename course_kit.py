@@ -3,7 +3,7 @@ grader of what they hand in.
 
     python course_kit.py handout DIR        writes the students' base code into DIR
     python course_kit.py grade SUBMISSIONS --out RESULTS [--jobs N] [--force] [--config F]
-    python course_kit.py expected           remakes kit/expected/practice1.npz, on purpose only
+    python course_kit.py expected           remakes kit/checks/expected/practice1.npz, on purpose only
 
 The parts that students write are marked in the finished framework, each block of solution
 between two comment lines at the same indentation:
@@ -24,11 +24,12 @@ import re
 import sys
 import textwrap
 from pathlib import Path
+from typing import NamedTuple, Optional
 
 REPO = Path(__file__).resolve().parent
 KIT = REPO / "kit"
 CHECKS = KIT / "checks"
-EXPECTED = KIT / "expected" / "practice1.npz"
+EXPECTED = CHECKS / "expected" / "practice1.npz"
 
 # What students write in, made from the framework by replacing the marked blocks
 COURSE_MODULES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppRenderer.py")
@@ -71,8 +72,7 @@ FRAMEWORK_ONLY = "FRAMEWORK ONLY"
 MARKER = re.compile(r"(?P<indent>[ ]*)# (?P<kind>ASSIGNMENT (?P<step>\S+)|FRAMEWORK ONLY) "
                     r"(?P<edge>BEGIN|END)")
 # Anything that looks like a marker, to catch misspelt ones
-LOOKS_LIKE_MARKER = re.compile(r"#.*\b(ASSIGNMENTS?|FRAMEWORK\s*ONLY)\b.*\b(BEGIN|END)\b",
-                               re.IGNORECASE)
+LOOKS_LIKE_MARKER = re.compile(r"#\s*(ASSIGNMENTS?\s+\d|FRAMEWORK\s*ONLY)")
 DEF = re.compile(r"(?P<indent>[ ]*)(async )?def (?P<name>\w+)\(")
 
 
@@ -102,11 +102,25 @@ def _place(lines, index, indent):
     return "module"
 
 
-def strip_solution(source, filename):
-    """The handout's version of a framework module: every marked block replaced by its
-    stub, or dropped when FRAMEWORK ONLY. Raises MarkerError naming the file and line."""
+class Block(NamedTuple):
+    """A marked block of a framework module: FRAMEWORK ONLY or an assignment step, at an
+    indentation, from the line of its BEGIN to the line of its END (numbered from 1), and
+    where it stands (see STEP_PLACES; None for FRAMEWORK ONLY)."""
+
+    kind: str
+    step: Optional[str]
+    indent: str
+    begin: int
+    end: int
+    place: Optional[str]
+
+
+def marked_blocks(source, filename):
+    """The Blocks of a framework module's source, in order. Raises MarkerError naming the
+    file and line of a marker that is unbalanced, nested, misspelt, of an unknown step or
+    in a place where its step has no stub."""
     lines = source.splitlines(keepends=True)
-    out, block, render_stubs = [], None, 0  # block: (kind, step, indent, first line number)
+    found, open_block, render_blocks = [], None, 0  # open_block: (kind, step, indent, line)
     for number, line in enumerate(lines, 1):
         where = f"{filename}, line {number}"
         marker = MARKER.fullmatch(line.rstrip("\n"))
@@ -115,44 +129,58 @@ def strip_solution(source, filename):
                 raise MarkerError(f"{where}: not a marker the kit knows: {line.strip()!r}; "
                                   "markers read '# ASSIGNMENT <step> BEGIN' (or END) and "
                                   "'# FRAMEWORK ONLY BEGIN' (or END)")
-            if block is None:
-                out.append(line)
             continue
         kind = FRAMEWORK_ONLY if marker["step"] is None else "ASSIGNMENT"
         step, indent = marker["step"], marker["indent"]
         if marker["edge"] == "BEGIN":
-            if block is not None:
+            if open_block is not None:
                 raise MarkerError(f"{where}: a block begins inside the block begun at line "
-                                  f"{block[3]}; blocks do not nest")
-            if kind == "ASSIGNMENT":
-                if step not in STEP_PLACES:
-                    raise MarkerError(f"{where}: unknown step {step!r}; the steps are "
-                                      + ", ".join(STEP_PLACES))
-                place = _place(lines, number - 1, indent)
-                if place not in STEP_PLACES[step]:
-                    raise MarkerError(f"{where}: a block of step {step} in {place!r}, where "
-                                      f"that step has no stub (it may stand in: "
-                                      + ", ".join(sorted(STEP_PLACES[step])) + ")")
-                render_stubs += place == "class"
-                if render_stubs > 1:
-                    raise MarkerError(f"{where}: a second block of step {step}; one block "
-                                      "holds all of render's methods")
-                out.extend(_stub(step, place, indent))
-            block = (kind, step, indent, number)
+                                  f"{open_block[3]}; blocks do not nest")
+            if kind == "ASSIGNMENT" and step not in STEP_PLACES:
+                raise MarkerError(f"{where}: unknown step {step!r}; the steps are "
+                                  + ", ".join(STEP_PLACES))
+            open_block = (kind, step, indent, number)
             continue
-        if block is None or (kind, step, indent) != block[:3]:
-            begun = "no block is open" if block is None else (
-                f"the block begun at line {block[3]} is {block[0]} {block[1] or ''}".strip()
-                + f" at indentation {len(block[2])}")
+        if open_block is None or (kind, step, indent) != open_block[:3]:
+            begun = "no block is open" if open_block is None else (
+                f"the block begun at line {open_block[3]} is "
+                f"{open_block[0]} {open_block[1] or ''}".strip()
+                + f" at indentation {len(open_block[2])}")
             raise MarkerError(f"{where}: {line.strip()!r} does not close a block: {begun}")
-        if kind == FRAMEWORK_ONLY and out and not out[-1].strip() and (
-                number < len(lines) and not lines[number].strip()):
-            out.pop()  # the blank lines around a dropped block would double
-        block = None
-    if block is not None:
-        raise MarkerError(f"{filename}, line {block[3]}: the block begun here is never "
+        place = None
+        if kind == "ASSIGNMENT":
+            place = _place(lines, open_block[3] - 1, indent)
+            if place not in STEP_PLACES[step]:
+                raise MarkerError(f"{filename}, line {open_block[3]}: a block of step {step} "
+                                  f"in {place!r}, where that step has no stub (it may "
+                                  "stand in: " + ", ".join(sorted(STEP_PLACES[step])) + ")")
+            render_blocks += place == "class"
+            if render_blocks > 1:
+                raise MarkerError(f"{filename}, line {open_block[3]}: a second block of step "
+                                  f"{step}; one block holds all of render's methods")
+        found.append(Block(kind, step, indent, open_block[3], number, place))
+        open_block = None
+    if open_block is not None:
+        raise MarkerError(f"{filename}, line {open_block[3]}: the block begun here is never "
                           "closed")
-    return "".join(out)
+    return found
+
+
+def strip_solution(source, filename):
+    """The handout's version of a framework module: every marked block replaced by its
+    stub, or dropped when FRAMEWORK ONLY (with one of the blank lines around it, when both
+    are blank). Raises MarkerError as marked_blocks does."""
+    lines = source.splitlines(keepends=True)
+    out, taken = [], 0  # taken: the lines of source dealt with so far
+    for block in marked_blocks(source, filename):
+        out += lines[taken:block.begin - 1]
+        taken = block.end
+        if block.kind == FRAMEWORK_ONLY:
+            if out and not out[-1].strip() and taken < len(lines) and not lines[taken].strip():
+                out.pop()
+        else:
+            out += _stub(block.step, block.place, block.indent)
+    return "".join(out + lines[taken:])
 
 
 def _requirements():
@@ -215,7 +243,7 @@ def parse_args(argv):
                        help="grade again the submissions already graded")
     grade.add_argument("--config", default=None, metavar="FILE",
                        help="points and limits (default: kit/grading.toml)")
-    commands.add_parser("expected", help="remake kit/expected/practice1.npz from the "
+    commands.add_parser("expected", help="remake kit/checks/expected/practice1.npz from the "
                         "finished framework (only when its images change on purpose)")
     return parser.parse_args(argv)
 

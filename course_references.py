@@ -1,5 +1,5 @@
 """The expected data of the students' checks, rendered by the finished framework into
-kit/expected/practice1.npz (by `python course_kit.py expected`, and only on purpose: when
+kit/checks/expected/practice1.npz (by `python course_kit.py expected`, and only on purpose: when
 the framework's images change by an intended change, with the reason in the commit).
 
 For each image of practice1_checks.IMAGES, at practice1_checks.SIZE pixels:
@@ -173,7 +173,7 @@ def seams(name, expected, folder):
 
 
 def expected_arrays():
-    """Every array of kit/expected/practice1.npz, by key."""
+    """Every array of kit/checks/expected/practice1.npz, by key."""
     arrays = {}
     with tempfile.TemporaryDirectory() as folder:
         for name, info in checks.IMAGES.items():

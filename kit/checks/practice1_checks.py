@@ -77,8 +77,8 @@ STEPS = {
     "1.3": ("depth", "normal"),
     "1.4": ("phong_sphere", "phong_cornell"),
 }
-# The mistakes that the finished framework renders for the expected data (see
-# course_references.py), by image; every ray-traced image also has "corner_rays"
+# The mistakes whose images course_references.py renders with the finished framework for
+# the expected data, by image; every ray-traced image also has "corner_rays"
 RENDERED_MISTAKES = {
     "depth": ("unclamped_depth",),
     "normal": ("unmapped_normals",),
@@ -477,11 +477,11 @@ def likely_mistake(image, name, data):
     expected = data[name]
     candidates = {"upside_down": expected[::-1], "mirrored": expected[:, ::-1],
                   "transposed": expected.transpose(1, 0, 2)}
-    if name != "lazy":
+    if name != "lazy" and "lazy" in data:
         candidates["lazy_loop"] = data["lazy"]
-        candidates["corner_rays"] = data[f"{name}.mistake.corner_rays"]
-    for mistake in RENDERED_MISTAKES.get(name, ()):
-        candidates[mistake] = data[f"{name}.mistake.{mistake}"]
+    prefix = f"{name}.mistake."
+    candidates.update({key[len(prefix):]: data[key] for key in sorted(data)
+                       if key.startswith(prefix)})
     allowed = MISTAKE_SHARE * image.shape[0] * image.shape[1]
     for mistake, candidate in candidates.items():
         if (~close(image, candidate)).sum() <= allowed:

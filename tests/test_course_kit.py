@@ -1,0 +1,602 @@
+"""The course kit of Practice 1 (course_kit.py): the handout made from the marked framework,
+the students' checks in it, and the grader of submissions."""
+import csv
+import hashlib
+import html
+import html.parser
+import json
+import re
+import shutil
+import subprocess
+import sys
+import textwrap
+import zipfile
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+import course_feedback
+import course_grader
+import course_isolation
+import course_kit
+import course_references
+import course_kit_students as students
+from helpers import REPO, headless_env
+
+sys.path.insert(0, str(course_kit.CHECKS))
+import practice1_checks as checks  # noqa: E402  (found through the line above)
+
+SUBPROCESS_TIMEOUT = 300  # seconds; only there so that a hung child cannot hang the suite
+HANDOUT_FILES = [
+    ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
+    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Integrators.py", "out/.gitkeep", "pytest.ini",
+    "requirements.txt", "tests/expected/practice1.npz", "tests/practice1_checks.py",
+    "tests/reference/figure1_phong.png", "tests/reference/figure2_lazy.png",
+    "tests/reference/figure3_intersection.png", "tests/reference/figure4_depth.png",
+    "tests/reference/figure4_normal.png", "tests/reference/figure5_phong.png",
+    "tests/test_practice1.py"]
+CHECK_TESTS = {  # the students' tests, by the step in their names
+    "test_assignment_1_1_lazy_image": "1.1", "test_assignment_1_2_any_hit": "1.2",
+    "test_assignment_1_2_render_loop_rays": "1.2",
+    "test_assignment_1_2_intersection_image": "1.2", "test_assignment_1_3_depth_image": "1.3",
+    "test_assignment_1_3_normal_image": "1.3", "test_assignment_1_4_phong_sphere_scene": "1.4",
+    "test_assignment_1_4_phong_cornell_box": "1.4"}
+
+
+def run(args, cwd):
+    return subprocess.run([sys.executable, *map(str, args)], cwd=cwd, env=headless_env(),
+                          capture_output=True, text=True, timeout=SUBPROCESS_TIMEOUT)
+
+
+def tree(folder):
+    """{relative path: bytes} of every file under folder."""
+    return {path.relative_to(folder).as_posix(): path.read_bytes()
+            for path in sorted(Path(folder).rglob("*")) if path.is_file()}
+
+
+@pytest.fixture(scope="module")
+def handout(tmp_path_factory):
+    return course_kit.write_handout(tmp_path_factory.mktemp("kit") / "handout")
+
+
+def with_framework(handout, folder):
+    """A copy of the handout in folder with the finished framework's modules in it."""
+    shutil.copytree(handout, folder)
+    for path in REPO.glob("PyRT_*.py"):
+        shutil.copyfile(path, folder / path.name)
+    shutil.copyfile(REPO / "AppRenderer.py", folder / "AppRenderer.py")
+    return folder
+
+
+# ------------------------------------------------------------------------------------------
+# The handout
+# ------------------------------------------------------------------------------------------
+def test_the_handout_holds_the_course_modules_and_what_they_need(handout):
+    assert sorted(tree(handout)) == HANDOUT_FILES
+    assert (handout / "pytest.ini").read_text() == course_kit.PYTEST_INI
+    requirements = (handout / "requirements.txt").read_text().split("\n")[1:]
+    assert [re.match(r"[\w.-]+", line)[0] for line in requirements if line] == [
+        "numpy", "opencv-python-headless", "matplotlib", "pytest"]
+
+
+def test_the_handout_is_the_same_on_every_run(handout, tmp_path):
+    again = course_kit.write_handout(tmp_path / "again")
+    assert tree(again) == tree(handout)
+
+
+def test_the_handout_goes_into_a_new_folder_only(tmp_path, capsys):
+    (tmp_path / "notes.txt").write_text("mine")
+    with pytest.raises(SystemExit) as exited:
+        course_kit.main(["handout", str(tmp_path)])
+    assert exited.value.code == f"course_kit.py handout: {tmp_path} is not empty; the " \
+                                "handout goes into a new folder"
+    assert tree(tmp_path) == {"notes.txt": b"mine"}
+
+
+def solution_lines():
+    """The lines of the framework's solution blocks that appear nowhere else in the
+    framework (stripped, comments and blank lines left out)."""
+    blocked, elsewhere = set(), set()
+    for name in course_kit.COURSE_MODULES:
+        source = (REPO / name).read_text(encoding="utf-8")
+        lines = source.splitlines()
+        inside = set()
+        for block in course_kit.marked_blocks(source, name):
+            inside.update(range(block.begin, block.end + 1))
+            if block.kind != course_kit.FRAMEWORK_ONLY:
+                blocked.update(line.strip() for line in lines[block.begin:block.end - 1])
+        elsewhere.update(line.strip() for number, line in enumerate(lines, 1)
+                         if number not in inside)
+    stubs = {line.strip() for line in course_kit.RENDER_STUB.splitlines()} | set(
+        course_kit.BODY_STUBS.values())
+    return {line for line in blocked - elsewhere - stubs if line and not line.startswith("#")}
+
+
+def test_no_line_of_the_solution_is_left_in_the_handout(handout):
+    distinctive = solution_lines()
+    assert len(distinctive) >= 10  # the solution of every step has lines of its own
+    texts = {name: content.decode("utf-8") for name, content in tree(handout).items()
+             if not name.endswith((".png", ".npz"))}
+    for name, text in texts.items():
+        stripped = {line.strip() for line in text.splitlines()}
+        assert not distinctive & stripped, name
+        assert not re.search(r"^\s*(from|import) PyRT_Rendering", text, re.MULTILINE), name
+        assert not re.search(r"# (ASSIGNMENT \S+|FRAMEWORK ONLY) (BEGIN|END)", text), name
+    # The expected images are the only data made from the solution
+    binary = sorted(name for name in tree(handout) if name.endswith((".png", ".npz")))
+    assert binary == ["tests/expected/practice1.npz"] + [
+        f"tests/reference/{name}" for name in course_kit.FIGURES]
+
+
+def test_the_handout_has_the_courses_stubs(handout):
+    integrators = (handout / "PyRT_Integrators.py").read_text()
+    assert textwrap.indent(course_kit.RENDER_STUB, "    ") in integrators
+    for step, count in (("1.2", 1), ("1.3", 2), ("1.4", 1)):
+        assert integrators.count(f"        # ASSIGNMENT {step}: PUT YOUR CODE HERE\n"
+                                 "        pass\n") == count
+    assert "        # ASSIGNMENT 1.2: PUT YOUR CODE HERE\n        return False\n" in (
+        handout / "PyRT_Core.py").read_text()
+
+
+def test_the_handout_renders_the_green_image(handout, tmp_path):
+    folder = shutil.copytree(handout, tmp_path / "run")
+    result = run(["AppRenderer.py"], cwd=folder)
+    assert result.returncode == 0, result.stderr
+    png = plt.imread(folder / "out" / "rendered_image_Phong.png")[:, :, :3]
+    assert png.shape == (500, 500, 3) and np.all(png == (0.0, 1.0, 0.0))
+    assert "100%" in result.stdout
+
+
+def failures_of_the_checks(folder):
+    """{test name: its failure message, or None when it passed} of `python -m pytest` run
+    in folder, from pytest's JUnit XML report."""
+    report = folder / "report.xml"
+    run(["-m", "pytest", "-q", "-p", "no:cacheprovider", f"--junitxml={report}"], cwd=folder)
+    text = report.read_text(encoding="utf-8")
+    cases = re.findall(r'<testcase [^>]*name="(\w+)"[^>]*?(/>|>(.*?)</testcase>)', text,
+                       re.DOTALL)
+    return {name: (html.unescape(re.search(r'message="([^"]*)"', body).group(1)).removeprefix(
+        "Failed: ") if body else None) for name, _, body in cases}
+
+
+def test_on_the_untouched_handout_every_check_fails_with_its_steps_message(handout, tmp_path):
+    failures = failures_of_the_checks(shutil.copytree(handout, tmp_path / "untouched"))
+    assert sorted(failures) == sorted(CHECK_TESTS)
+    for name, message in failures.items():
+        assert message is not None and message.startswith(
+            f"Assignment {CHECK_TESTS[name]}, "), name
+    assert "GREEN" in failures["test_assignment_1_1_lazy_image"]
+    assert "answers False for every ray that hits" in failures["test_assignment_1_2_any_hit"]
+    for name in ("test_assignment_1_3_depth_image", "test_assignment_1_4_phong_cornell_box"):
+        assert "compute_color returned None" in failures[name]
+
+
+def test_on_the_finished_framework_every_check_passes(handout, tmp_path):
+    failures = failures_of_the_checks(with_framework(handout, tmp_path / "framework"))
+    assert failures == dict.fromkeys(CHECK_TESTS)
+
+
+# ------------------------------------------------------------------------------------------
+# Markers
+# ------------------------------------------------------------------------------------------
+MARKED = '''\
+import os
+# FRAMEWORK ONLY BEGIN
+import fast
+# FRAMEWORK ONLY END
+
+
+class Integrator:
+    # ASSIGNMENT 1.1-1.2 BEGIN
+    def render(self, workers=None):
+        fast.render(self)
+    # ASSIGNMENT 1.1-1.2 END
+
+    # FRAMEWORK ONLY BEGIN
+    def render_row(self, y):
+        return []
+    # FRAMEWORK ONLY END
+
+    def any_hit(self, ray):
+        """Docstring stays."""
+        # ASSIGNMENT 1.2 BEGIN
+        return any(ray)
+        # ASSIGNMENT 1.2 END
+
+    def compute_color(self, ray):
+        # ASSIGNMENT 1.4 BEGIN
+        return ray
+        # ASSIGNMENT 1.4 END
+'''
+
+
+def test_each_block_is_replaced_by_its_stub_at_its_indentation():
+    assert course_kit.strip_solution(MARKED, "example.py") == (
+        "import os\n\n\nclass Integrator:\n"
+        + textwrap.indent(course_kit.RENDER_STUB, "    ")
+        + '\n    def any_hit(self, ray):\n        """Docstring stays."""\n'
+        "        # ASSIGNMENT 1.2: PUT YOUR CODE HERE\n        return False\n\n"
+        "    def compute_color(self, ray):\n"
+        "        # ASSIGNMENT 1.4: PUT YOUR CODE HERE\n        pass\n")
+
+
+@pytest.mark.parametrize("change, message", [
+    (("    # ASSIGNMENT 1.1-1.2 END\n", ""),
+     "example.py, line 12: a block begins inside the block begun at line 8"),
+    (("        # ASSIGNMENT 1.2 BEGIN\n", ""),
+     "example.py, line 21: '# ASSIGNMENT 1.2 END' does not close a block: no block is open"),
+    (("        # ASSIGNMENT 1.4 END\n", ""),
+     "example.py, line 25: the block begun here is never closed"),
+    (("# ASSIGNMENT 1.4 BEGIN", "# ASSIGNMENT 1.5 BEGIN"),
+     "example.py, line 25: unknown step '1.5'; the steps are 1.1-1.2, 1.2, 1.3, 1.4"),
+    (("# ASSIGNMENT 1.2 BEGIN", "# ASSIGNMENT 1.2 BEGN"),
+     "example.py, line 20: not a marker the kit knows: '# ASSIGNMENT 1.2 BEGN'"),
+    (("# FRAMEWORK ONLY BEGIN\nimport", "#FRAMEWORK ONLY BEGIN\nimport"),
+     "example.py, line 2: not a marker the kit knows: '#FRAMEWORK ONLY BEGIN'"),
+    (("        # ASSIGNMENT 1.4 END", "    # ASSIGNMENT 1.4 END"),
+     "example.py, line 27: '# ASSIGNMENT 1.4 END' does not close a block: the block begun "
+     "at line 25 is ASSIGNMENT 1.4 at indentation 8"),
+    (("ASSIGNMENT 1.4", "ASSIGNMENT 1.3"), None),
+    (("ASSIGNMENT 1.2 ", "ASSIGNMENT 1.3 "),
+     "example.py, line 20: a block of step 1.3 in 'any_hit', where that step has no stub"),
+    (("ASSIGNMENT 1.2 END", "ASSIGNMENT 1.3 END"), "example.py, line 22: '# ASSIGNMENT 1.3 "
+     "END' does not close a block: the block begun at line 20 is ASSIGNMENT 1.2"),
+])
+def test_a_marker_the_kit_cannot_read_stops_it_with_the_file_and_line(change, message):
+    source = MARKED.replace(*change)
+    assert source != MARKED
+    if message is None:  # the same stub for another step: allowed
+        assert "# ASSIGNMENT 1.3: PUT YOUR CODE HERE" in course_kit.strip_solution(
+            source, "example.py")
+        return
+    with pytest.raises(course_kit.MarkerError) as error:
+        course_kit.strip_solution(source, "example.py")
+    assert str(error.value).startswith(message)
+
+
+def test_a_second_block_of_render_methods_is_refused():
+    source = MARKED.replace("    # FRAMEWORK ONLY BEGIN\n    def render_row",
+                            "    # ASSIGNMENT 1.1-1.2 BEGIN\n    def render_row").replace(
+        "        return []\n    # FRAMEWORK ONLY END", "        return []\n"
+                                                      "    # ASSIGNMENT 1.1-1.2 END")
+    with pytest.raises(course_kit.MarkerError, match=r"^example.py, line 13: a second block "
+                                                     r"of step 1.1-1.2"):
+        course_kit.strip_solution(source, "example.py")
+
+
+# ------------------------------------------------------------------------------------------
+# The checks and their expected data
+# ------------------------------------------------------------------------------------------
+def test_the_expected_data_is_what_the_framework_renders():
+    # Fails when the framework's images change: then remake the data on purpose, with
+    # `python course_kit.py expected`, and say why in the commit.
+    arrays = course_references.expected_arrays()
+    assert course_references.npz_bytes(arrays) == course_kit.EXPECTED.read_bytes()
+
+
+def test_the_checks_scenes_are_apprenderers():
+    import AppRenderer
+    from PyRT_Integrators import PhongIntegrator
+    for ours, theirs in ((checks.sphere_scene(), AppRenderer.sphere_test_scene(
+            width=checks.SIZE, height=checks.SIZE)), (checks.cornell_box(),
+                                                      AppRenderer.cornell_box_scene(
+                                                          0.75, 2, width=checks.SIZE,
+                                                          height=checks.SIZE))):
+        images = [course_references.traced_image(PhongIntegrator("unused"), scene)
+                  for scene in (ours, theirs)]
+        assert np.array_equal(*images)
+        assert [type(obj) for obj in ours.object_list] == [type(obj)
+                                                           for obj in theirs.object_list]
+
+
+def data_2x2():
+    """Expected data of a 2 x 2 image "img" with one seam pixel, (x 1, y 0), whose rays
+    also see (0, 0, 0)."""
+    return {"img": np.array([[[0.5, 0.5, 0.5], [0.25, 0.0, 1.0]],
+                             [[1e-12, 0.0, 0.0], [2.0, 2.0, 2.0]]]),
+            "img.seam_pixels": np.array([[0, 1]]),
+            "img.seam_colors": np.array([[[0.25, 0.0, 1.0], [0.0, 0.0, 0.0]]])}
+
+
+def test_a_right_image_equals_the_expected_one_to_a_millionth_or_takes_a_seams_other_side():
+    data = data_2x2()
+    image = data["img"].copy()
+    image[0, 0, 0] = 0.5 + 0.4e-6    # within 1e-9 + 1e-6 * 0.5
+    image[1, 0, 0] = 0.9e-9          # within 1e-9 of 1e-12
+    image[0, 1] = (0.0, 0.0, 0.0)    # the seam's other side
+    image[1, 1, 2] = 2.0 + 1.9e-6    # within 1e-9 + 1e-6 * 2
+    assert checks.right_pixels(image, "img", data).all()
+    assert checks.judge(image, "img", data).right
+
+
+def test_a_pixel_off_by_more_or_with_another_sides_colour_away_from_a_seam_is_wrong():
+    data = data_2x2()
+    image = data["img"].copy()
+    image[0, 0, 1] = 0.5 + 0.6e-6    # beyond 1e-9 + 1e-6 * 0.5
+    image[1, 1] = (0.0, 0.0, 0.0)    # a seam's colour, but not at a seam
+    image[0, 1] = (0.25, 0.5, 1.0)   # at the seam, neither side
+    assert checks.right_pixels(image, "img", data).tolist() == [[False, False], [True, False]]
+    verdict = checks.judge(image, "img", data)
+    assert verdict.reason == "3 of 4 pixels differ from the expected image"
+    assert verdict.details == (
+        "  where: x 0 to 1, y 0 to 1 (x to the right, y down, from 0); first: (0, 0) is "
+        "(0.5, 0.500001, 0.5), expected (0.5, 0.5, 0.5); (1, 0) is (0.25, 0.5, 1), "
+        "expected (0.25, 0, 1); (1, 1) is (0, 0, 0), expected (2, 2, 2)")
+
+
+def test_an_image_of_a_known_mistake_is_named():
+    data = checks.expected_data()
+    assert checks.likely_mistake(data["depth"][::-1], "depth", data) == (
+        checks.LIKELY["upside_down"])
+    assert checks.likely_mistake(data["phong_cornell.mistake.no_shadows"], "phong_cornell",
+                                 data) == checks.LIKELY["no_shadows"]
+    assert checks.likely_mistake(np.zeros((40, 40, 3)), "intersection", data) == (
+        checks.BLACK_HINTS["intersection"])
+    assert checks.likely_mistake(data["depth"] * 0.5, "depth", data) is None
+
+
+# ------------------------------------------------------------------------------------------
+# The grader
+# ------------------------------------------------------------------------------------------
+LIMITS = """\
+[points]
+"1.1" = 10
+"1.2" = 20
+"1.3" = 30
+"1.4" = 40.5
+
+[limits]
+cpu_seconds = 3
+wall_seconds = 300
+memory_mib = 1536
+output_kib = 256
+"""
+PASS = None  # a step that passes
+# Per submission, per step: PASS or a part of the reason for failing it
+VERDICTS = {
+    "handout_untouched": {"1.1": "every pixel is GREEN",
+                          "1.2": "answers False for every ray that hits",
+                          "1.3": "DepthIntegrator.compute_color returned None",
+                          "1.4": "PhongIntegrator.compute_color returned None"},
+    "framework": {},
+    "right": {},
+    "right_other_style": {},
+    "right_zipped": {},
+    "upside_down": dict.fromkeys(("1.1", "1.2", "1.3", "1.4"), "upside down"),
+    "transposed": dict.fromkeys(("1.1", "1.2", "1.3", "1.4"), "transposed"),
+    "corner_rays": dict.fromkeys(("1.1", "1.2", "1.3", "1.4"), "top-left corners"),
+    "any_hit_first_object_only": {"1.2": "any_hit is wrong for 1 of 6 rays"},
+    "unclamped_depth_and_no_ambient": {"1.3": "not clamped at 0",
+                                       "1.4": "the ambient term, kd (x) i_a, is missing"},
+    "unmapped_normals_and_no_shadows": {"1.3": "normals are not mapped to [0, 1]",
+                                        "1.4": "there are no shadows"},
+    "no_inverse_square": {"1.4": "not divided by r^2"},
+    "raises": {"1.2": "raised ZeroDivisionError: float division by zero"},
+    "calls_sys_exit": {"1.3": "your code called sys.exit(3)"},
+    "calls_os_exit": {"1.3": "the process ended (exit code 7) before the checks were done"},
+    "hangs": {"1.4": "used more than 3 s of processor time"},
+    "prints_without_end": {"1.4": "printed more than 256 KiB"},
+    "allocates_without_bound": {"1.3": "ran out of memory"},
+    "starts_a_process": {"1.3": "refused: started a process (os.system)"},
+    "writes_outside": {"1.3": "refused: wrote outside its working copy: "},
+    "syntax_error": dict.fromkeys(("1.1", "1.2", "1.3", "1.4"),
+                                  "PyRT_Integrators.py, line {line} is not valid Python"),
+}
+
+
+def digest(folder):
+    return hashlib.sha256(json.dumps({name: hashlib.sha256(content).hexdigest() for name, content
+                                      in tree(folder).items()}).encode()).hexdigest()
+
+
+@pytest.fixture(scope="module")
+def graded(handout, tmp_path_factory):
+    """Every submission of VERDICTS graded with the LIMITS: (the submissions' folder, its
+    digest before grading, the results' folder, the records, the outside path)."""
+    base = tmp_path_factory.mktemp("grading")
+    folder, results, outside = base / "submissions", base / "results", base / "outside.txt"
+    folder.mkdir()
+    shutil.copytree(handout, folder / "handout_untouched",
+                    ignore=lambda _, names: [n for n in names
+                                             if n not in course_kit.COURSE_MODULES])
+    framework = folder / "framework"
+    framework.mkdir()
+    for name in course_kit.COURSE_MODULES:
+        shutil.copyfile(REPO / name, framework / name)
+    students.write_submission(folder / "right", handout, {})
+    for name, answers in students.VARIANTS.items():
+        students.write_submission(folder / name, handout, answers)
+    students.write_submission(folder / "writes_outside", handout, {
+        stub: code.replace("{OUTSIDE!r}", repr(str(outside)))
+        for stub, code in students.WRITES_OUTSIDE.items()})
+    broken = students.write_submission(folder / "syntax_error", handout, {})
+    text = (broken / "PyRT_Integrators.py").read_text()
+    (broken / "PyRT_Integrators.py").write_text(
+        text.replace("    def compute_color(self, ray):\n", students.SYNTAX_ERROR_LINE, 1))
+    # A zip whose modules lie in a folder, with a deeper decoy that does not count
+    right = students.submission_files(handout, {})
+    with zipfile.ZipFile(folder / "right_zipped.zip", "w") as archive:
+        for name, text in right.items():
+            archive.writestr(f"my_practice/{name}", text)
+        archive.writestr("my_practice/venv/lib/PyRT_Core.py", "raise SystemExit('decoy')\n")
+    config_path = base / "grading.toml"
+    config_path.write_text(LIMITS)
+    before = digest(folder)
+    records = course_grader.grade_folder(folder, results,
+                                         course_grader.load_config(config_path), jobs=2,
+                                         progress=False)
+    return folder, before, results, {record["submission"]: record for record in records}, \
+        outside, config_path
+
+
+def syntax_error_line(folder):
+    text = (folder / "syntax_error" / "PyRT_Integrators.py").read_text()
+    return text.splitlines().index(students.SYNTAX_ERROR_LINE.rstrip("\n")) + 1
+
+
+@pytest.mark.parametrize("submission", sorted(VERDICTS))
+def test_each_submission_gets_the_verdict_it_deserves_step_by_step(graded, submission):
+    folder, _, _, records, _, _ = graded
+    steps = {step["step"]: step for step in records[submission]["steps"]}
+    for step, expected in ((step, VERDICTS[submission].get(step, PASS)) for step in steps):
+        if expected is PASS:
+            assert steps[step]["passed"] and steps[step]["points"] == steps[step][
+                "max_points"], (step, steps[step]["reason"])
+        else:
+            assert not steps[step]["passed"] and steps[step]["points"] == 0, step
+            assert expected.format(line=syntax_error_line(folder)) in steps[step]["reason"], (
+                step, steps[step]["reason"])
+
+
+def test_submissions_are_only_read_and_nothing_is_written_outside(graded):
+    folder, before, _, _, outside, _ = graded
+    assert digest(folder) == before
+    assert not outside.exists()
+
+
+def test_the_student_sees_the_lines_of_their_own_code_that_raised(graded):
+    _, _, _, records, _, _ = graded
+    check = records["raises"]["steps"][1]["checks"][2]
+    assert check["name"] == "intersection"
+    # The first frame is the student's line; PyRT_Common.py, a file of theirs, follows
+    assert re.fullmatch(r'  File ".*/PyRT_Integrators\.py", line \d+, in compute_color\n'
+                        r'    return RED / 0\n.*  File ".*/PyRT_Common\.py", line \d+, in '
+                        r'__truediv__\n.*\nZeroDivisionError: float division by zero\n',
+                        check["error"], re.DOTALL), check["error"]
+
+
+def test_grades_csv_has_a_row_per_submission_with_points_total_and_reasons(graded):
+    _, _, results, records, _, _ = graded
+    with open(results / "grades.csv", newline="", encoding="utf-8") as grades:
+        rows = list(csv.reader(grades))
+    assert rows[0] == ["submission", "1.1", "1.2", "1.3", "1.4", "total", "reason 1.1",
+                       "reason 1.2", "reason 1.3", "reason 1.4"]
+    assert [row[0] for row in rows[1:]] == sorted(VERDICTS)
+    weights = {"1.1": 10, "1.2": 20, "1.3": 30, "1.4": 40.5}
+    for row in rows[1:]:
+        verdicts = VERDICTS[row[0]]
+        points = [0 if step in verdicts else weights[step] for step in weights]
+        assert row[1:6] == [str(p) for p in points] + [str(sum(points))], row
+        assert [bool(reason) for reason in row[6:]] == [step in verdicts for step in weights]
+        assert all(len(reason) <= course_grader.REASON_LENGTH for reason in row[6:])
+
+
+def test_results_json_has_the_fields_of_gradescopes_format(graded):
+    _, _, results, records, _, _ = graded
+    for name, record in records.items():
+        result = json.loads((results / name / course_feedback.GRADESCOPE).read_text())
+        assert sorted(result) == ["score", "stdout_visibility", "tests", "visibility"]
+        assert result["score"] == sum(test["score"] for test in result["tests"])
+        assert [test["name"] for test in result["tests"]] == list(
+            course_grader.STEP_TITLES.values())
+        for test in result["tests"]:
+            assert sorted(test) == ["max_score", "name", "output", "score", "status"]
+            assert test["status"] in ("passed", "failed")
+            assert (test["status"] == "passed") == (test["score"] == test["max_score"])
+
+
+class Page(html.parser.HTMLParser):
+    """The headings, the images' sources and the text of a feedback page."""
+
+    def __init__(self, text):
+        super().__init__()
+        self.headings, self.images, self.text, self._heading = [], [], [], None
+        self.feed(text)
+
+    def handle_starttag(self, tag, attrs):
+        if tag in ("h1", "h2", "h3"):
+            self._heading = []
+        if tag == "img":
+            self.images.append(dict(attrs)["src"])
+
+    def handle_endtag(self, tag):
+        if tag in ("h1", "h2", "h3"):
+            self.headings.append("".join(self._heading))
+            self._heading = None
+
+    def handle_data(self, data):
+        self.text.append(data)
+        if self._heading is not None:
+            self._heading.append(data)
+
+
+def test_the_feedback_page_shows_each_step_its_verdict_and_the_images(graded):
+    _, _, results, _, _, _ = graded
+    page = Page((results / "unclamped_depth_and_no_ambient" / "feedback.html").read_text())
+    assert page.headings[0] == ("Practice 1: unclamped_depth_and_no_ambient, 30 of 100.5 "
+                                "points")
+    assert [h for h in page.headings if h.startswith("Assignment")] == [
+        "Assignment 1.1: the render loop (Lazy integrator): passed, 10 of 10 points",
+        "Assignment 1.2: any_hit and the Intersection integrator: passed, 20 of 20 points",
+        "Assignment 1.3: the Depth and Normal integrators: failed, 0 of 30 points",
+        "Assignment 1.4: the Phong integrator: failed, 0 of 40.5 points"]
+    assert page.images[:3] == ["images/1.3_depth_render.png", "images/1.3_depth_expected.png",
+                               "images/1.3_depth_difference.png"]
+    for source in page.images:
+        image = plt.imread(results / "unclamped_depth_and_no_ambient" / source)
+        assert image.shape[:2] == (checks.SIZE * checks.PNG_SCALE,) * 2
+    assert "likely mistake: the depth is not clamped at 0" in "".join(page.text)
+
+
+def test_grading_again_skips_what_is_graded_and_regrades_what_changed(graded, monkeypatch):
+    folder, _, results, records, _, config_path = graded
+    config = course_grader.load_config(config_path)
+    graded_again = []
+    original = course_grader.grade_submission
+
+    def recording(submission, *args):
+        graded_again.append(submission.name)
+        return original(submission, *args)
+
+    monkeypatch.setattr(course_grader, "grade_submission", recording)
+    again = course_grader.grade_folder(folder, results, config, progress=False)
+    assert graded_again == [] and again == [records[name] for name in sorted(VERDICTS)]
+    copy = folder.parent / "changed"
+    shutil.copytree(folder / "syntax_error", copy / "syntax_error")
+    course_grader.grade_folder(copy, results, config, progress=False)
+    assert graded_again == []  # the same files: the same grading
+    (copy / "syntax_error" / "PyRT_Integrators.py").write_text(
+        (folder / "right" / "PyRT_Integrators.py").read_text())
+    changed = course_grader.grade_folder(copy, results, config, progress=False)
+    assert graded_again == ["syntax_error"] and changed[0]["steps"][0]["passed"]
+    course_grader.grade_folder(copy, results, config, force=True, progress=False)
+    assert graded_again == ["syntax_error"] * 2
+
+
+def test_a_step_that_sleeps_is_stopped_at_the_wall_clock_limit(handout, tmp_path):
+    work = shutil.copytree(handout, tmp_path / "work")
+    common = work / "PyRT_Common.py"
+    common.write_text("import time\ntime.sleep(600)\n" + common.read_text())
+    server = course_isolation.StepServer()
+    try:
+        limits = {"cpu_seconds": 60, "wall_seconds": 1, "memory_mib": 2048,
+                  "output_kib": 256}
+        result, why, _ = server.run_step(work, tmp_path, "1.1", limits)
+    finally:
+        server.close()
+    assert result is None
+    assert why == ("did not finish within 1 s, the time limit of a step: the code hangs or "
+                   "is far too slow")
+
+
+@pytest.mark.parametrize("text, message", [
+    ("[points]\n", "[points] must give the steps 1.1, 1.2, 1.3, 1.4"),
+    (LIMITS.replace("cpu_seconds = 3", "cpu_seconds = 0"),
+     "[limits] cpu_seconds must be a positive number, got 0"),
+    (LIMITS.replace('"1.1" = 10', '"1.1" = "ten"'),
+     "[points] 1.1 must be a positive number, got 'ten'"),
+    ("[points", "Expected ']'"),
+])
+def test_a_config_that_is_not_right_is_refused_with_the_reason(tmp_path, text, message):
+    path = tmp_path / "grading.toml"
+    path.write_text(text)
+    with pytest.raises(ValueError) as error:
+        course_grader.load_config(path)
+    assert str(error.value).startswith(f"{path}: ") and message in str(error.value)
+
+
+def test_the_default_config_gives_25_points_a_step():
+    config = course_grader.load_config()
+    assert config.points == dict.fromkeys(("1.1", "1.2", "1.3", "1.4"), 25)
