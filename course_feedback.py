@@ -64,8 +64,9 @@ def feedback_html(record):
         parts.append(f"<section class=\"step\"><h2 class=\"{verdict}\">{e(step['title'])}: "
                      f"{verdict}, {_number(step['points'])} of "
                      f"{_number(step['max_points'])} points</h2>")
-        if step["reason"]:
-            parts.append(f"<p>{e(step['reason'])}</p>")
+        failed = [check for check in step["checks"] if not check["passed"]]
+        if step["reason"] and not (failed and step["reason"] == check_reason(failed[0])):
+            parts.append(f"<p>{e(step['reason'])}</p>")  # not a check's: shown here
         for check in step["checks"]:
             parts.append(_check_html(check))
         if not step["passed"] and step["output"].strip():
@@ -74,6 +75,11 @@ def feedback_html(record):
         parts.append("</section>")
     parts.append("</body></html>\n")
     return "\n".join(parts)
+
+
+def check_reason(check):
+    """The reason of a step that failed first at this check, as course_grader words it."""
+    return f"{check['title']}: {check['reason']}"
 
 
 def _check_html(check):

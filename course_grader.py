@@ -205,7 +205,7 @@ def grade_steps(submission, template, scratch, config, server):
             if result["refused"]:
                 reason = "refused: " + "; ".join(dict.fromkeys(result["refused"]))
             elif failed:
-                reason = f"{failed[0]['title']}: {failed[0]['reason']}"
+                reason = course_feedback.check_reason(failed[0])
             else:
                 reason = ""
             verdict.update(passed=not reason, reason=reason)
@@ -304,8 +304,9 @@ def grade_folder(submissions_folder, results, config, jobs=None, force=False, pr
             ThreadPoolExecutor(max_workers=jobs) as pool:
         template = course_kit.write_handout(Path(template) / "handout")
         try:
-            for _ in range(jobs if todo else 0):
-                servers.put(course_isolation.StepServer())
+            cores = course_isolation.cores()
+            for index in range(jobs if todo else 0):
+                servers.put(course_isolation.StepServer(cores[index % len(cores)]))
             running = [pool.submit(grade_submission, submission, template, results, config,
                                    kit, servers) for submission in todo]
             for done in tqdm(as_completed(running), total=len(running), unit="submission",

@@ -1,9 +1,12 @@
 """One step of the students' checks run on one submission's working copy, in a process of
 its own, for the grader (course_grader.py).
 
-The processes are forked by a step server, `python -I -B course_isolation.py`, that has
-loaded what every course module loads (numpy, OpenCV, matplotlib) once, so that a step's
-process starts at once; each is still new, and shares nothing with the others. The server
+The processes are forked by a step server, `python -I -B course_isolation.py [CORE]`, that
+has loaded what every course module loads (numpy, OpenCV, matplotlib) once, so that a
+step's process starts at once; each is still new, and shares nothing with the others. A
+server given a CORE runs on that core alone, and so do its steps' processes: the grader
+gives each server a core of its own, and PyRT's own render() (the finished framework
+graded as a submission) then stays in its process instead of starting workers. The server
 reads one request per line on its standard input (JSON: workdir, step, result, log,
 limits), forks the step's process, waits for it at most the step's wall-clock limit
 (killing it then), and answers one line: {"code": its exit code, negative for a signal,
@@ -133,8 +136,10 @@ def step_process(workdir, step, result_path, log_path, limits):
 # ------------------------------------------------------------------------------------------
 # The step server
 # ------------------------------------------------------------------------------------------
-def serve():
+def serve(core=None):
     """The step server's loop: see the module's docstring."""
+    if core is not None and hasattr(os, "sched_setaffinity"):
+        os.sched_setaffinity(0, {core})
     for name in PRELOADED:
         __import__(name)
     for line in sys.stdin:
@@ -185,14 +190,16 @@ def _wait(pid, seconds):
 # In the grader
 # ------------------------------------------------------------------------------------------
 class StepServer:
-    """A step server process (see the module's docstring), used by one thread at a time."""
+    """A step server process (see the module's docstring), used by one thread at a time;
+    core: the core it runs on, or None for any."""
 
-    def __init__(self):
+    def __init__(self, core=None):
         environment = {name: os.environ[name] for name in KEPT_VARIABLES
                        if name in os.environ}
         environment.update(ENVIRONMENT)
         self.process = subprocess.Popen(
-            [sys.executable, "-I", "-B", str(Path(__file__).resolve())],
+            [sys.executable, "-I", "-B", str(Path(__file__).resolve())]
+            + ([] if core is None else [str(core)]),
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=environment, text=True)
 
     def close(self):
@@ -238,5 +245,13 @@ def _why_no_result(code, limits, output):
             "called os._exit, or ended the process some other way")
 
 
+def cores():
+    """The cores this process may run on, for the step servers (None where the system
+    does not tell)."""
+    if hasattr(os, "sched_getaffinity"):
+        return sorted(os.sched_getaffinity(0))
+    return [None]
+
+
 if __name__ == "__main__":
-    serve()
+    serve(int(sys.argv[1]) if len(sys.argv) > 1 else None)

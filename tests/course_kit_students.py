@@ -164,14 +164,16 @@ return False
         "phong": RIGHT["phong"].replace("if not self.scene.any_hit(shadow_ray):", "if True:"),
     },
     "no_inverse_square": {"phong": RIGHT["phong"].replace(" / (distance ** 2)", "")},
-    # Hostile code, each in one step
+    # Hostile code, each in one step. The allocation takes memory that the system hands
+    # out zeroed without touching it, so that it meets the memory limit long before the
+    # limit of processor time, however loaded the machine.
     "raises": {"intersection": "return RED / 0\n"},
     "calls_sys_exit": {"normal": "import sys\nsys.exit(3)\n"},
     "calls_os_exit": {"depth": "import os\nos._exit(7)\n"},
     "hangs": {"phong": "while True:\n    pass\n"},
     "prints_without_end": {"phong": "while True:\n    print('x' * 1000)\n"},
     "allocates_without_bound": {"depth": "chunks = []\nwhile True:\n"
-                                         "    chunks.append(bytearray(100_000_000))\n"},
+                                         "    chunks.append(bytes(100_000_000))\n"},
     "starts_a_process": {"normal": "import os\nos.system('true')\n" + RIGHT["normal"]},
 }
 # Variants whose code needs a path from the test: {OUTSIDE} is replaced by it

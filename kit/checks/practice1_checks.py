@@ -149,6 +149,16 @@ class Check:
             f" ({note})" if note else "")
         return self
 
+    def report(self):
+        """All the student needs to know: the message, the error, the PNGs' paths."""
+        parts = [self.message]
+        if self.error:
+            parts.append("The error, with the lines of your code it passed through:\n"
+                         + self.error.rstrip("\n"))
+        if self.images:
+            parts.append("  images: " + ", ".join(str(path) for path in self.images.values()))
+        return "\n".join(parts)
+
 
 def title(name):
     return "any_hit, tested on its own" if name == "any_hit" else IMAGES[name].title
@@ -174,7 +184,7 @@ def run_check(name, out=OUT):
         raise
     except BaseException as error:  # SystemExit too: the student's code called sys.exit
         check.error = student_traceback(error)
-        return check.fail(_error_reason(error), check.error)
+        return check.fail(_error_reason(error))
 
 
 def run_step(step, out=OUT):
@@ -199,8 +209,11 @@ def _error_reason(error):
 
 def student_traceback(error):
     """The lines of the error's traceback that lie in the student's files (the four
-    course modules beside tests/), then the error itself."""
-    frames = [frame for frame in traceback.extract_tb(error.__traceback__)
+    course modules beside tests/), each file named as in the student's folder, then the
+    error itself."""
+    frames = [traceback.FrameSummary(Path(frame.filename).name, frame.lineno, frame.name,
+                                     line=frame.line)
+              for frame in traceback.extract_tb(error.__traceback__)
               if Path(frame.filename).name in STUDENT_FILES
               and Path(frame.filename).resolve().parent == PROJECT]
     lines = traceback.format_list(frames)
@@ -399,8 +412,7 @@ def _check_image(check, folder):
                   "(Assignment 1.2), but render() fails the check of its rays: "
                   + probe.reason)
     check.images = write_pngs(folder, image, data[check.name], verdict.wrong)
-    return check.fail(reason, verdict.details + "\n  images: " + ", ".join(
-        str(path) for path in check.images.values()))
+    return check.fail(reason, verdict.details)
 
 
 # ------------------------------------------------------------------------------------------

@@ -15,7 +15,7 @@ from practice1_checks import run_check
 def passes(name):
     check = run_check(name)
     if not check.passed:
-        pytest.fail(check.message, pytrace=False)
+        pytest.fail(check.report(), pytrace=False)
 
 
 def test_assignment_1_1_lazy_image():
