@@ -64,9 +64,8 @@ def feedback_html(record):
         parts.append(f"<section class=\"step\"><h2 class=\"{verdict}\">{e(step['title'])}: "
                      f"{verdict}, {_number(step['points'])} of "
                      f"{_number(step['max_points'])} points</h2>")
-        failed = [check for check in step["checks"] if not check["passed"]]
-        if step["reason"] and not (failed and step["reason"] == check_reason(failed[0])):
-            parts.append(f"<p>{e(step['reason'])}</p>")  # not a check's: shown here
+        if step_note(step):
+            parts.append(f"<p>{e(step_note(step))}</p>")
         for check in step["checks"]:
             parts.append(_check_html(check))
         if not step["passed"] and step["output"].strip():
@@ -80,6 +79,15 @@ def feedback_html(record):
 def check_reason(check):
     """The reason of a step that failed first at this check, as course_grader words it."""
     return f"{check['title']}: {check['reason']}"
+
+
+def step_note(step):
+    """The reason a step failed when no check's message tells it (the step's process
+    ended without a result, or the guard refused something), else ""."""
+    failed = [check for check in step["checks"] if not check["passed"]]
+    if failed and step["reason"] == check_reason(failed[0]):
+        return ""
+    return step["reason"]
 
 
 def _check_html(check):
@@ -102,7 +110,7 @@ def gradescope_results(record):
     total score, and one test per step with its score, max_score, status and output."""
     tests = []
     for step in record["steps"]:
-        lines = [step["reason"]] if step["reason"] else []
+        lines = [step_note(step)] if step_note(step) else []
         lines += [check["message"] + (f"\n{check['error']}" if check["error"] else "")
                   for check in step["checks"]]
         tests.append({"name": step["title"], "score": step["points"],

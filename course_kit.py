@@ -3,7 +3,8 @@ grader of what they hand in.
 
     python course_kit.py handout DIR        writes the students' base code into DIR
     python course_kit.py grade SUBMISSIONS --out RESULTS [--jobs N] [--force] [--config F]
-    python course_kit.py expected           remakes kit/checks/expected/practice1.npz, on purpose only
+    python course_kit.py expected           remakes the checks' expected images, on
+                                            purpose only (kit/checks/expected/)
 
 The parts that students write are marked in the finished framework, each block of solution
 between two comment lines at the same indentation:

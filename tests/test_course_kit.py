@@ -257,10 +257,11 @@ def test_a_marker_the_kit_cannot_read_stops_it_with_the_file_and_line(change, me
 
 
 def test_a_second_block_of_render_methods_is_refused():
-    source = MARKED.replace("    # FRAMEWORK ONLY BEGIN\n    def render_row",
-                            "    # ASSIGNMENT 1.1-1.2 BEGIN\n    def render_row").replace(
-        "        return []\n    # FRAMEWORK ONLY END", "        return []\n"
-                                                      "    # ASSIGNMENT 1.1-1.2 END")
+    source = MARKED.replace(
+        "    # FRAMEWORK ONLY BEGIN\n    def render_row",
+        "    # ASSIGNMENT 1.1-1.2 BEGIN\n    def render_row").replace(
+        "        return []\n    # FRAMEWORK ONLY END",
+        "        return []\n    # ASSIGNMENT 1.1-1.2 END")
     with pytest.raises(course_kit.MarkerError, match=r"^example.py, line 13: a second block "
                                                      r"of step 1.1-1.2"):
         course_kit.strip_solution(source, "example.py")
