@@ -329,6 +329,5 @@ def main(args):
         records = grade_folder(args.submissions, args.out, config, args.jobs, args.force)
     except (ValueError, FileNotFoundError) as error:
         sys.exit(f"course_kit.py grade: {error}")
-    graded = sum(1 for record in records)
-    print(f"Graded {graded} submissions: {Path(args.out) / 'grades.csv'}")
+    print(f"The grades of {len(records)} submissions: {Path(args.out) / 'grades.csv'}")
     return 0

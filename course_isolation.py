@@ -18,8 +18,8 @@ Before the student's code is imported, the step's process
   included: a process that prints without end is killed), and writes no core file,
 - keeps on its import path only the working copy, its tests/ (the checks) and Python's
   own libraries,
-- installs an audit hook that refuses, and notes, every write outside the working copy
-  and every start of another process.
+- installs an audit hook that refuses, and notes, every write outside the working copy or
+  into its checks (tests/) and every start of another process.
 At the end it writes the checks' verdicts and the refusals as JSON to the result file,
 outside the working copy. A process that ends before that (os._exit, a crash, a limit)
 leaves no result, and the grader says why.
@@ -72,16 +72,23 @@ def set_limits(limits):
 
 def guard(workdir, refused):
     """An audit hook that refuses, with a PermissionError, writes to paths outside workdir
-    and the start of processes, and notes each refusal in the list `refused`."""
+    or inside its tests/ (the checks and their expected images) and the start of
+    processes, and notes each refusal in the list `refused`."""
     root = os.path.realpath(workdir)
+    checks = os.path.join(root, "tests")
 
-    def outside(path):
+    def forbidden(path):
+        """Why writing path is refused, or None when it is not."""
         if isinstance(path, int) or path is None:  # a file descriptor, already open
             return None
         name = os.path.realpath(os.fsdecode(path))
-        if name == os.devnull or os.path.commonpath([name, root]) == root:
+        if name == os.devnull:
             return None
-        return name
+        if os.path.commonpath([name, root]) != root:
+            return f"wrote outside its working copy: {name}"
+        if os.path.commonpath([name, checks]) == checks:
+            return f"wrote into the checks: {name}"
+        return None
 
     def hook(event, args):
         if event == "open":
@@ -94,11 +101,10 @@ def guard(workdir, refused):
         else:
             return
         for path in paths:
-            name = outside(path)
-            if name is not None:
-                refused.append(f"wrote outside its working copy: {name} ({event})")
-                raise PermissionError(f"grading: writing {name} outside the working copy "
-                                      "is not allowed")
+            why = forbidden(path)
+            if why is not None:
+                refused.append(f"{why} ({event})")
+                raise PermissionError(f"grading: refused, the code {why}")
 
     return hook
 

@@ -176,7 +176,10 @@ return False
                                          "    chunks.append(bytes(100_000_000))\n"},
     "starts_a_process": {"normal": "import os\nos.system('true')\n" + RIGHT["normal"]},
 }
-# Variants whose code needs a path from the test: {OUTSIDE} is replaced by it
+# Variants whose code needs a path from the test: {OUTSIDE} is replaced by it; and one
+# that writes into the checks' expected images, next to the student's modules
+WRITES_INTO_THE_CHECKS = {"depth": "try:\n    open('tests/expected/practice1.npz', 'wb')\n"
+                                   "except OSError:\n    pass\n" + RIGHT["depth"]}
 WRITES_OUTSIDE = {"normal": "try:\n    open({OUTSIDE!r}, 'w').write('x')\nexcept OSError:\n"
                             "    pass\n" + RIGHT["normal"]}
 SYNTAX_ERROR_LINE = "    def compute_color(self, ray)\n"  # no colon

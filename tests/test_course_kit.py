@@ -336,6 +336,9 @@ def test_an_image_of_a_known_mistake_is_named():
     assert checks.likely_mistake(np.zeros((40, 40, 3)), "intersection", data) == (
         checks.BLACK_HINTS["intersection"])
     assert checks.likely_mistake(data["depth"] * 0.5, "depth", data) is None
+    probe = data["probe"].copy()
+    probe[3, 4] = (-1.0, -1.0, -1.0)  # what RayProbe gives a ray from elsewhere
+    assert checks.likely_mistake(probe, "probe", data) == checks.LIKELY["not_from_camera"]
 
 
 # ------------------------------------------------------------------------------------------
@@ -382,6 +385,11 @@ VERDICTS = {
     "allocates_without_bound": {"1.3": "ran out of memory"},
     "starts_a_process": {"1.3": "refused: started a process (os.system)"},
     "writes_outside": {"1.3": "refused: wrote outside its working copy: "},
+    "writes_into_the_checks": {"1.3": "refused: wrote into the checks: "},
+    "not_a_zip": {"1.1": "every pixel is GREEN",
+                  "1.2": "answers False for every ray that hits",
+                  "1.3": "DepthIntegrator.compute_color returned None",
+                  "1.4": "PhongIntegrator.compute_color returned None"},
     "syntax_error": dict.fromkeys(("1.1", "1.2", "1.3", "1.4"),
                                   "PyRT_Integrators.py, line {line} is not valid Python"),
 }
@@ -412,6 +420,9 @@ def graded(handout, tmp_path_factory):
     students.write_submission(folder / "writes_outside", handout, {
         stub: code.replace("{OUTSIDE!r}", repr(str(outside)))
         for stub, code in students.WRITES_OUTSIDE.items()})
+    students.write_submission(folder / "writes_into_the_checks", handout,
+                              students.WRITES_INTO_THE_CHECKS)
+    (folder / "not_a_zip.zip").write_bytes(b"a file of another kind")
     broken = students.write_submission(folder / "syntax_error", handout, {})
     text = (broken / "PyRT_Integrators.py").read_text()
     (broken / "PyRT_Integrators.py").write_text(
@@ -455,6 +466,16 @@ def test_submissions_are_only_read_and_nothing_is_written_outside(graded):
     folder, before, _, _, outside, _ = graded
     assert digest(folder) == before
     assert not outside.exists()
+
+
+def test_a_submission_that_cannot_be_read_says_so_and_is_graded_as_the_handout(graded):
+    _, _, results, records, _, _ = graded
+    assert records["not_a_zip"]["problems"] == [
+        "not_a_zip.zip is not a readable zip file (File is not a zip file)"]
+    assert records["not_a_zip"]["files"] == dict.fromkeys(course_kit.COURSE_MODULES,
+                                                          "handout")
+    page = Page((results / "not_a_zip" / "feedback.html").read_text())
+    assert "not_a_zip.zip is not a readable zip file (File is not a zip file)" in page.text
 
 
 def test_the_student_sees_the_lines_of_their_own_code_that_raised(graded):

@@ -92,6 +92,8 @@ LIKELY = {
     "lazy_loop": "render() still paints the colours of Assignment 1.1, (x/width, y/height, "
                  "0), instead of asking compute_color for the colour of the ray through "
                  "each pixel (Assignment 1.2)",
+    "not_from_camera": "some rays do not start at the camera, (0, 0, 0), where every "
+                       "camera ray starts",
     "upside_down": "the image is upside down: y counts the rows from the top of the image, "
                    "while the camera's +y points up",
     "mirrored": "the image is mirrored, left and right swapped",
@@ -486,6 +488,8 @@ def likely_mistake(image, name, data):
         return LIKELY["green"]
     if not np.any(image):
         return BLACK_HINTS.get(name, BLACK_HINT)
+    if name == "probe" and np.any(np.all(image == -1.0, axis=2)):
+        return LIKELY["not_from_camera"]
     expected = data[name]
     candidates = {"upside_down": expected[::-1], "mirrored": expected[:, ::-1],
                   "transposed": expected.transpose(1, 0, 2)}
