@@ -10,8 +10,10 @@ pixel, the progress bar, checks) lives in PyRT_Rendering.py and the modules it u
 """
 from PyRT_Common import *
 from PyRT_Common import __all__ as _common_names, _restore_state, is_number
+# FRAMEWORK ONLY BEGIN
 from PyRT_Rendering import check_render, rendered_blocks
 from PyRT_Sampling import ADAPTIVE_TOLERANCE, not_a_color, sampled_row
+# FRAMEWORK ONLY END
 
 __all__ = _common_names + [
     "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
@@ -49,12 +51,16 @@ class Integrator(ABC):
     def compute_color(self, ray):
         """The RGBColor arriving along ray."""
 
+    # FRAMEWORK ONLY BEGIN
     @property
     def traces_rays(self):
         """Whether render() makes the rows from compute_color's colours of camera rays, so
         that PyRT may choose the rays of each pixel (samples per pixel, adaptive sampling):
         unless render_row is overridden, as LazyIntegrator does to make its rows itself."""
         return type(self).render_row is Integrator.render_row
+    # FRAMEWORK ONLY END
+
+    # ASSIGNMENT 1.1-1.2 BEGIN
 
     def render(self, workers=None, samples_per_pixel=1, progress=True, adaptive=False,
                tolerance=ADAPTIVE_TOLERANCE):
@@ -104,6 +110,7 @@ class Integrator(ABC):
             except AttributeError:
                 raise not_a_color(self, color, len(row) // 3, y) from None
         return row
+    # ASSIGNMENT 1.1-1.2 END
 
 
 # ------------------------------------------------------------------------------------------
@@ -119,11 +126,13 @@ class LazyIntegrator(Integrator):
     def __init__(self, filename_, experiment_name=""):
         super().__init__(filename_ + "_Lazy", experiment_name)
 
+    # FRAMEWORK ONLY BEGIN
     def render_row(self, y, samples_per_pixel=1):
         """One exact value per pixel, however many samples are asked for."""
         camera = self.scene.camera
         green = y / camera.height
         return [c for x in range(camera.width) for c in (x / camera.width, green, 0.0)]
+    # FRAMEWORK ONLY END
 
     def compute_color(self, ray):
         """A ray carries no pixel position, so on its own it gets BLACK (see render_row)."""
@@ -140,7 +149,9 @@ class IntersectionIntegrator(Integrator):
         super().__init__(filename_ + "_Intersection", experiment_name)
 
     def compute_color(self, ray):
+        # ASSIGNMENT 1.2 BEGIN
         return RED if self.scene.any_hit(ray) else BLACK
+        # ASSIGNMENT 1.2 END
 
 
 # ------------------------------------------------------------------------------------------
@@ -158,11 +169,13 @@ class DepthIntegrator(Integrator):
         self.max_depth = max_depth_
 
     def compute_color(self, ray):
+        # ASSIGNMENT 1.3 BEGIN
         hit = self.scene.closest_hit(ray)
         if not hit.has_hit:
             return BLACK
         c = 1.0 - hit.hit_distance / self.max_depth
         return RGBColor(c, c, c) if c > 0.0 else BLACK  # c = max(1 - distance/max_depth, 0)
+        # ASSIGNMENT 1.3 END
 
 
 class NormalIntegrator(Integrator):
@@ -173,11 +186,13 @@ class NormalIntegrator(Integrator):
         super().__init__(filename_ + "_Normal", experiment_name)
 
     def compute_color(self, ray):
+        # ASSIGNMENT 1.3 BEGIN
         hit = self.scene.closest_hit(ray)
         if not hit.has_hit:
             return BLACK
         n = hit.normal
         return RGBColor((n.x + 1.0) / 2.0, (n.y + 1.0) / 2.0, (n.z + 1.0) / 2.0)
+        # ASSIGNMENT 1.3 END
 
 
 # ------------------------------------------------------------------------------------------

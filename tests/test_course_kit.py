@@ -31,7 +31,8 @@ import practice1_checks as checks  # noqa: E402  (found through the line above)
 SUBPROCESS_TIMEOUT = 300  # seconds; only there so that a hung child cannot hang the suite
 HANDOUT_FILES = [
     ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
-    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Integrators.py", "out/.gitkeep", "pytest.ini",
+    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Images.py", "PyRT_Integrators.py", "out/.gitkeep",
+    "pytest.ini",
     "requirements.txt", "tests/expected/practice1.npz", "tests/practice1_checks.py",
     "tests/reference/figure1_phong.png", "tests/reference/figure2_lazy.png",
     "tests/reference/figure3_intersection.png", "tests/reference/figure4_depth.png",
