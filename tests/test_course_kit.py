@@ -7,7 +7,6 @@ import html.parser
 import json
 import re
 import shutil
-import subprocess
 import sys
 import textwrap
 import zipfile
@@ -23,12 +22,11 @@ import course_isolation
 import course_kit
 import course_references
 import course_kit_students as students
-from helpers import REPO, headless_env
+from helpers import REPO, run_python
 
 sys.path.insert(0, str(course_kit.CHECKS))
 import practice1_checks as checks  # noqa: E402  (found through the line above)
 
-SUBPROCESS_TIMEOUT = 300  # seconds; only there so that a hung child cannot hang the suite
 HANDOUT_FILES = [
     ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
     "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Images.py", "PyRT_Integrators.py", "out/.gitkeep",
@@ -44,11 +42,6 @@ CHECK_TESTS = {  # the students' tests, by the step in their names
     "test_assignment_1_2_intersection_image": "1.2", "test_assignment_1_3_depth_image": "1.3",
     "test_assignment_1_3_normal_image": "1.3", "test_assignment_1_4_phong_sphere_scene": "1.4",
     "test_assignment_1_4_phong_cornell_box": "1.4"}
-
-
-def run(args, cwd):
-    return subprocess.run([sys.executable, *map(str, args)], cwd=cwd, env=headless_env(),
-                          capture_output=True, text=True, timeout=SUBPROCESS_TIMEOUT)
 
 
 def tree(folder):
@@ -143,7 +136,7 @@ def test_the_handout_has_the_courses_stubs(handout):
 
 def test_the_handout_renders_the_green_image(handout, tmp_path):
     folder = shutil.copytree(handout, tmp_path / "run")
-    result = run(["AppRenderer.py"], cwd=folder)
+    result = run_python(["AppRenderer.py"], cwd=folder)
     assert result.returncode == 0, result.stderr
     png = plt.imread(folder / "out" / "rendered_image_Phong.png")[:, :, :3]
     assert png.shape == (500, 500, 3) and np.all(png == (0.0, 1.0, 0.0))
@@ -154,7 +147,8 @@ def failures_of_the_checks(folder):
     """{test name: its failure message, or None when it passed} of `python -m pytest` run
     in folder, from pytest's JUnit XML report."""
     report = folder / "report.xml"
-    run(["-m", "pytest", "-q", "-p", "no:cacheprovider", f"--junitxml={report}"], cwd=folder)
+    run_python(["-m", "pytest", "-q", "-p", "no:cacheprovider", f"--junitxml={report}"],
+               cwd=folder)
     text = report.read_text(encoding="utf-8")
     cases = re.findall(r'<testcase [^>]*name="(\w+)"[^>]*?(/>|>(.*?)</testcase>)', text,
                        re.DOTALL)
