@@ -149,7 +149,7 @@ def figure_integrator(entry, filename):
 
 def reference_name(entry):
     """The name of an entry of FIGURES among the course's reference images in
-    tests/reference/: figure1_phong, figure2_lazy, ..., figure4_depth, figure4_normal."""
+    references/: figure1_phong, figure2_lazy, ..., figure4_depth, figure4_normal."""
     figure, name, _, _ = entry
     return f"{figure}_{name}"
 
@@ -164,7 +164,7 @@ def compare_with_course(renders, folder, size, samples_per_pixel=1):
               f"pixels and these {size[0]} x {size[1]}: not compared with them (render at "
               f"the default size to compare).")
         return None
-    print("Compared with the course's figures (tests/reference/):")
+    print("Compared with the course's figures (references/):")
     if samples_per_pixel != 1:
         print("(the figures have one ray per pixel: with more, the edges differ from them)")
     comparisons = compare_figures(renders)

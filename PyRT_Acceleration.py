@@ -12,7 +12,7 @@ of ``AcceleratedPhong``; both give the plain code's answers, bit for bit, faster
   plain code, with a HitData made only for the nearest hit;
 - culling: a ray from the camera, or a shadow ray ending at a point light, tests only the
   objects that a ray from that point in its direction can reach (each object's cone, seen
-  from the camera or the light, with a margin far above rounding); and a flat object
+  from the camera or the light, with a margin far side_limit rounding); and a flat object
   cannot block a shadow ray that starts clearly on the light's side of its plane.
 
 It never runs in place of a student's code. A subclass of Scene with its own closest_hit
@@ -49,7 +49,7 @@ from PyRT_Core import (EDGE_TOLERANCE, UNIT_HIGH, UNIT_LOW, InfinitePlane, Lambe
 CLEARANCE = 1e-4
 LIGHT_MATCH = 1e-5
 ORIGIN_MARGIN = 1e-12
-_new = object.__new__
+_new = object.__new__  # makes an object without calling its __init__
 # Renders of fewer camera rays than this per object list (camera, and each light) leave
 # the plain methods in place: the setup would cost more than it saves.
 MIN_RAYS_PER_LIST = 8
@@ -198,11 +198,12 @@ class AcceleratedQueries:
     scene does not change.
 
     Each query walks a list of entries, one per object in the order of object_list:
-    (test, constants, index, object, ux, uy, uz, reach, sx, sy, sz, above). test is the
-    scalar intersection test of the object's class (None for an object tested through its
-    own intersect), constants what it reads. A ray of unit direction d with d.u < reach
-    cannot hit the object (its cone), nor can a ray from origin o with o.s > above (the
-    flat object's plane lies beyond the ray's end, seen from o). Lists: from_camera, for
+    (test, constants, index, object, ux, uy, uz, cos_limit, sx, sy, sz, side_limit). test
+    is the scalar intersection test of the object's class (None for an object tested
+    through its own intersect), constants what it reads. A ray of unit direction d with
+    d.u < cos_limit cannot hit the object (its cone), nor can a ray from origin o with
+    o.s > side_limit (the flat object's plane lies beyond the ray's end, seen from o).
+    Lists: from_camera, for
     rays that start at the camera (the origin); towards_light[i], for rays that end at
     point light i (shadow rays): (its x, y, z, its clear_box, the shorter list of the
     entries left to test from an origin inside that box, its entries with the cones seen
@@ -252,15 +253,15 @@ class AcceleratedQueries:
         nearest = self.nearest(ray, ox, oy, oz, dx, dy, dz, ray.t_min, ray.t_max)
         if nearest is None:
             return HitData()
-        test, k, index, t = nearest
-        if test is None:  # the HitData of the object's own intersect
-            k.primitive_index = index
-            return k
+        test, found, index, t = nearest
+        if test is None:  # found is the HitData of the object's own intersect
+            found.primitive_index = index
+            return found
         # HitData(True, Vector3D(px, py, pz), Vector3D(nx, ny, nz), t, index), made without
         # the three calls of __init__, which closest_hit would make for nearly every pixel
         point, normal, hit = _new(Vector3D), _new(Vector3D), _new(HitData)
         point.x, point.y, point.z, normal.x, normal.y, normal.z = _HIT[test](
-            k, ox, oy, oz, dx, dy, dz, t)
+            found, ox, oy, oz, dx, dy, dz, t)
         hit.has_hit, hit.hit_point, hit.normal, hit.hit_distance = True, point, normal, t
         hit.primitive_index = index
         return hit
@@ -272,18 +273,18 @@ class AcceleratedQueries:
         hit replaces the nearest so far, as in Scene.closest_hit."""
         from_camera = ox == 0.0 and oy == 0.0 and oz == 0.0 and t_min >= 0.0
         nearest = None
-        for test, k, index, obj, ux, uy, uz, reach, _, _, _, _ in (
+        for test, constants, index, obj, ux, uy, uz, cos_limit, _, _, _, _ in (
                 self.from_camera if from_camera else self.everywhere):
-            if dx * ux + dy * uy + dz * uz < reach:
+            if dx * ux + dy * uy + dz * uz < cos_limit:
                 continue
             if test is None:  # its own intersect, along the ray as it is
                 hit = obj.intersect(ray)
                 if hit.has_hit and (nearest is None or hit.hit_distance < t_max):
                     nearest, t_max = (None, hit, index, hit.hit_distance), hit.hit_distance
                 continue
-            t = test(k, ox, oy, oz, dx, dy, dz, t_min, t_max)
+            t = test(constants, ox, oy, oz, dx, dy, dz, t_min, t_max)
             if t is not None and (nearest is None or t < t_max):
-                nearest, t_max = (test, k, index, t), t
+                nearest, t_max = (test, constants, index, t), t
         return nearest
 
     def any_hit(self, ray):
@@ -304,22 +305,23 @@ class AcceleratedQueries:
                 entries = self.from_camera
             elif t_max < INFINITY:  # a shadow ray, when it ends at a light
                 ex, ey, ez = ox + dx * t_max, oy + dy * t_max, oz + dz * t_max
-                near = self.light_match
+                within = self.light_match
                 for x, y, z, (x0, x1, y0, y1, z0, z1), inside, all_entries, i in (
                         self.next_lights):
-                    if (-near <= x - ex <= near and -near <= y - ey <= near
-                            and -near <= z - ez <= near):
+                    if (-within <= x - ex <= within and -within <= y - ey <= within
+                            and -within <= z - ez <= within):
                         rotations = self.rotations
                         self.next_lights = rotations[i + 1 if i + 1 < len(rotations) else 0]
                         clear = x0 < ox < x1 and y0 < oy < y1 and z0 < oz < z1
                         entries = inside if clear else all_entries
                         break
-        for test, k, _, obj, ux, uy, uz, reach, sx, sy, sz, above in entries:
-            if dx * ux + dy * uy + dz * uz >= reach and ox * sx + oy * sy + oz * sz <= above:
+        for test, constants, _, obj, ux, uy, uz, cos_limit, sx, sy, sz, side_limit in entries:
+            if (dx * ux + dy * uy + dz * uz >= cos_limit
+                    and ox * sx + oy * sy + oz * sz <= side_limit):
                 if test is None:
                     if obj.intersect(ray).has_hit:
                         return True
-                elif test(k, ox, oy, oz, dx, dy, dz, t_min, t_max) is not None:
+                elif test(constants, ox, oy, oz, dx, dy, dz, t_min, t_max) is not None:
                     return True
         return False
 
@@ -353,11 +355,11 @@ class AcceleratedPhong:
         nearest = self.queries.nearest(None, ox, oy, oz, dx, dy, dz, ray.t_min, ray.t_max)
         if nearest is None:
             return BLACK
-        test, k, index, t = nearest
+        test, constants, index, t = nearest
         brdf = self.objects[index].get_BRDF()
         if type(brdf) is not Lambertian:
             return self.plain_color(ray)
-        px, py, pz, nx, ny, nz = _HIT[test](k, ox, oy, oz, dx, dy, dz, t)
+        px, py, pz, nx, ny, nz = _HIT[test](constants, ox, oy, oz, dx, dy, dz, t)
         kd, ambient = brdf.kd, self.ambient
         kr, kg, kb = kd.r, kd.g, kd.b
         red, green, blue = kr * ambient.r, kg * ambient.g, kb * ambient.b
@@ -388,9 +390,10 @@ class AcceleratedPhong:
             s_max = distance * (1.0 - SHADOW_EPSILON)
             if x0 < sox < x1 and y0 < soy < y1 and z0 < soz < z1:
                 entries = inside
-            for test, k, _, _, ux, uy, uz, reach, qx, qy, qz, above in entries:
-                if (sx * ux + sy * uy + sz * uz >= reach and sox * qx + soy * qy + soz * qz <= above
-                        and test(k, sox, soy, soz, sx, sy, sz, offset, s_max) is not None):
+            for test, constants, _, _, ux, uy, uz, cos_limit, qx, qy, qz, side_limit in entries:
+                if (sx * ux + sy * uy + sz * uz >= cos_limit
+                        and sox * qx + soy * qy + soz * qz <= side_limit
+                        and test(constants, sox, soy, soz, sx, sy, sz, offset, s_max) is not None):
                     break  # in the shadow of this object
             else:
                 cos_theta = nx * (tx / r) + ny * (ty / r) + nz * (tz / r)  # get_value(wi, ...)
@@ -446,11 +449,11 @@ def bounds(obj):
 
 
 def cone(obj, point, scale, built_in) -> tuple:
-    """(ux, uy, uz, reach): the directions d of rays from point that can hit obj are among
-    those with d.u >= reach. For a sphere around obj (CLEARANCE larger), u points to its
-    centre and reach is the cosine of the angle it fills. For a flat object whose bounding
-    sphere holds the point, u is the normal towards its plane and reach just below 0 (rays
-    along the plane are kept); reach -2 keeps every direction."""
+    """(ux, uy, uz, cos_limit): the directions d of rays from point that can hit obj are
+    among those with d.u >= cos_limit. For a sphere around obj (CLEARANCE larger), u points
+    to its centre and cos_limit is the cosine of the angle it fills. For a flat object
+    whose bounding sphere holds the point, u is the normal towards its plane and cos_limit
+    just below 0 (rays along the plane are kept); cos_limit -2 keeps every direction."""
     if not built_in:
         return 0.0, 0.0, 0.0, -2.0
     around = bounds(obj)
@@ -471,10 +474,10 @@ def cone(obj, point, scale, built_in) -> tuple:
 
 
 def plane_beyond(obj, light_position, scale, built_in) -> tuple:
-    """(sx, sy, sz, above) such that a ray towards the light from an origin o with
-    o.s > above cannot meet obj: o lies more than ORIGIN_MARGIN on the light's side of the
-    plane of a flat obj, the light more than CLEARANCE, so the whole way lies on one side.
-    (0, 0, 0, infinity), which leaves out nothing, for other objects."""
+    """(sx, sy, sz, side_limit) such that a ray towards the light from an origin o with
+    o.s > side_limit cannot meet obj: o lies more than ORIGIN_MARGIN on the light's side of
+    the plane of a flat obj, the light more than CLEARANCE, so the whole way lies on one
+    side. (0, 0, 0, infinity), which leaves out nothing, for other objects."""
     height = _height(obj, light_position) if built_in else None
     if height is None or abs(height) < CLEARANCE * scale:
         return 0.0, 0.0, 0.0, INFINITY
@@ -488,21 +491,21 @@ def clear_box(entries) -> tuple:
     """((x0, x1, y0, y1, z0, z1), inside): the open box of origins o from which no flat
     object with an axis-aligned normal among the entries (plane_beyond) can be met on the
     way to the light, and the entries that remain to be tested from inside the box. For
-    such an object, o.s > above is a bound on one coordinate of o: the box is where all
+    such an object, o.s > side_limit is a bound on one coordinate of o: the box is where all
     of them hold, and the walls of a room lit from inside all drop out in one test."""
     bounds = [-INFINITY, INFINITY] * 3  # x0, x1, y0, y1, z0, z1
     inside = []
     for entry in entries:
-        s, above = entry[8:11], entry[11]
+        s, side_limit = entry[8:11], entry[11]
         axes = [axis for axis in range(3) if s[axis] != 0.0]
-        if above == INFINITY or len(axes) != 1 or abs(s[axes[0]]) != 1.0:
+        if side_limit == INFINITY or len(axes) != 1 or abs(s[axes[0]]) != 1.0:
             inside.append(entry)
             continue
         axis = axes[0]
-        if s[axis] > 0.0:  # o[axis] > above
-            bounds[2 * axis] = max(bounds[2 * axis], above)
-        else:  # -o[axis] > above
-            bounds[2 * axis + 1] = min(bounds[2 * axis + 1], -above)
+        if s[axis] > 0.0:  # o[axis] > side_limit
+            bounds[2 * axis] = max(bounds[2 * axis], side_limit)
+        else:  # -o[axis] > side_limit
+            bounds[2 * axis + 1] = min(bounds[2 * axis + 1], -side_limit)
     return tuple(bounds), inside
 
 
@@ -520,9 +523,9 @@ def _point_on_plane(obj):
 
 def _reversed(cone_of_light) -> tuple:
     """A cone seen from a light, for the rays that run towards it: their direction d has
-    -d in the cone, that is d.(-u) >= reach."""
-    ux, uy, uz, reach = cone_of_light
-    return -ux, -uy, -uz, reach
+    -d in the cone, that is d.(-u) >= cos_limit."""
+    ux, uy, uz, cos_limit = cone_of_light
+    return -ux, -uy, -uz, cos_limit
 
 
 # ------------------------------------------------------------------------------------------
@@ -547,9 +550,9 @@ def _object_test(obj):
                                      a.x, a.y, a.z, b.x, b.y, b.z)
 
 
-def _sphere_distance(k, ox, oy, oz, dx, dy, dz, t_min, t_max):
+def _sphere_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     """Sphere.intersect's distance, or None on a miss."""
-    cx, cy, cz, r = k
+    cx, cy, cz, r = constants
     fx, fy, fz = (ox - cx) / r, (oy - cy) / r, (oz - cz) / r
     b = fx * dx + fy * dy + fz * dz
     ax, ay, az = fx - dx * b, fy - dy * b, fz - dz * b
@@ -575,9 +578,9 @@ def _sphere_distance(k, ox, oy, oz, dx, dy, dz, t_min, t_max):
     return None
 
 
-def _sphere_hit(k, ox, oy, oz, dx, dy, dz, t):
+def _sphere_hit(constants, ox, oy, oz, dx, dy, dz, t):
     """The hit point and normal (px, py, pz, nx, ny, nz) of Sphere.intersect at distance t."""
-    cx, cy, cz, r = k
+    cx, cy, cz, r = constants
     vx, vy, vz = (ox + dx * t - cx) / r, (oy + dy * t - cy) / r, (oz + dz * t - cz) / r
     if vx == 0.0 and vy == 0.0 and vz == 0.0:
         nx, ny, nz = dx * -1.0, dy * -1.0, dz * -1.0
@@ -586,9 +589,9 @@ def _sphere_hit(k, ox, oy, oz, dx, dy, dz, t):
     return cx + nx * r, cy + ny * r, cz + nz * r, nx, ny, nz
 
 
-def _plane_distance(k, ox, oy, oz, dx, dy, dz, t_min, t_max):
+def _plane_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     """InfinitePlane.intersect's distance, or None on a miss."""
-    nx, ny, nz, px, py, pz = k
+    nx, ny, nz, px, py, pz = constants
     denominator = dx * nx + dy * ny + dz * nz
     if denominator == 0.0:
         return None
@@ -598,14 +601,14 @@ def _plane_distance(k, ox, oy, oz, dx, dy, dz, t_min, t_max):
     return t
 
 
-def _plane_hit(k, ox, oy, oz, dx, dy, dz, t):
+def _plane_hit(constants, ox, oy, oz, dx, dy, dz, t):
     """The hit point and normal of InfinitePlane.intersect at distance t."""
-    return ox + dx * t, oy + dy * t, oz + dz * t, k[0], k[1], k[2]
+    return ox + dx * t, oy + dy * t, oz + dz * t, constants[0], constants[1], constants[2]
 
 
-def _parallelogram_distance(k, ox, oy, oz, dx, dy, dz, t_min, t_max):
+def _parallelogram_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     """Parallelogram.intersect's distance, or None on a miss."""
-    nx, ny, nz, px, py, pz, uax, uay, uaz, ubx, uby, ubz = k
+    nx, ny, nz, px, py, pz, uax, uay, uaz, ubx, uby, ubz = constants
     denominator = dx * nx + dy * ny + dz * nz
     if denominator == 0.0:
         return None
@@ -620,9 +623,9 @@ def _parallelogram_distance(k, ox, oy, oz, dx, dy, dz, t_min, t_max):
     return t
 
 
-def _parallelogram_hit(k, ox, oy, oz, dx, dy, dz, t):
+def _parallelogram_hit(constants, ox, oy, oz, dx, dy, dz, t):
     """The hit point and normal of Parallelogram.intersect at distance t."""
-    nx, ny, nz = k[:3]
+    nx, ny, nz = constants[:3]
     if dx * nx + dy * ny + dz * nz > 0.0:
         nx, ny, nz = nx * -1.0, ny * -1.0, nz * -1.0
     return ox + dx * t, oy + dy * t, oz + dz * t, nx, ny, nz

@@ -4,11 +4,10 @@ Students write ``from PyRT_Common import *``; besides the classes and functions 
 also brings ``np``, ``cv2``, ``plt``, ``ABC``, ``abstractmethod`` and ``sqrt, acos, cos, sin,
 atan2, floor, pi`` into their module.
 
-Speed note: the operators below are called millions of times per image, so every class uses
-``__slots__`` (smaller, faster attribute access), and the operators and functions that
+The operators below run millions of times per image, so the classes that every ray
+touches (Vector3D, RGBColor, Ray, HitData) have ``__slots__``, and the operators that
 return a new vector or colour make it with ``_new`` (object.__new__) and three
-assignments: the same object as Vector3D(x, y, z) gives, a sixth faster, because no call
-of __init__ is made.
+assignments: the object Vector3D(x, y, z) gives, without the call of __init__.
 """
 from abc import ABC, abstractmethod
 from math import acos, atan2, cos, floor, frexp, ldexp, pi, sin, sqrt
@@ -56,8 +55,7 @@ def is_number(value, whole=False) -> bool:
 def _restore_state(obj, state):
     """__setstate__ for the classes that worker processes receive pickled: setting the
     attributes one by one keeps CPython's compact attribute layout, which pickle's default
-    (updating obj.__dict__) gives up, making every attribute read slower: a render with
-    unpickled objects took 9% longer."""
+    (updating obj.__dict__) gives up, making every attribute read slower."""
     for name, value in state.items():
         setattr(obj, name, value)
 

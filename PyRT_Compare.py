@@ -1,7 +1,7 @@
 """Compare your images with the expected images of the course's figures.
 
 Each assignment of Practice 1 is checked by comparing a render with a figure of the course
-(Figures 1-5). Their expected images are in tests/reference/, one PNG per image:
+(Figures 1-5). Their expected images are in references/, one PNG per image:
 figure1_phong, figure2_lazy, figure3_intersection, figure4_depth, figure4_normal and
 figure5_phong. `compare_with_reference` compares one image with one of them (or with any
 other image of the same size) and tells how many pixels differ and by how much:
@@ -31,7 +31,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
 REPOSITORY = Path(__file__).resolve().parent
-REFERENCE_DIR = REPOSITORY / "tests" / "reference"
+REFERENCE_DIR = REPOSITORY / "references"
 REFERENCE_SIZE = 500  # the references are REFERENCE_SIZE x REFERENCE_SIZE pixels
 TOLERANCE_STEPS = 1   # differences of at most this many 8-bit steps do not count
 HEAT_MAP = "inferno"  # black where the images agree, yellow where they differ most
@@ -107,7 +107,7 @@ def compare_with_reference(image: Image, reference: Image,
         floats in [0, 1], as plt.imread reads a PNG, or 8-bit integers (uint8, 0-255).
         The .npy file and scene.rendered_image hold the linear image, before the display
         mapping: compare the .png written beside them instead.
-    reference: a figure name such as "figure1_phong" (its PNG in tests/reference/), a PNG
+    reference: a figure name such as "figure1_phong" (its PNG in references/), a PNG
         file, or an array as for `image`.
     difference_png: if given, the path where the difference is written as a heat map (see
         Comparison.save_difference).
@@ -132,7 +132,7 @@ def compare_with_reference(image: Image, reference: Image,
 
 def reference_path(reference) -> Path:
     """The PNG of a reference: a bare name such as "figure1_phong" is that figure's image
-    in tests/reference/, anything else (a name with .png or a folder) is a path."""
+    in references/, anything else (a name with .png or a folder) is a path."""
     path = Path(reference)
     if path.suffix == "" and path.parent == Path("."):
         return REFERENCE_DIR / f"{path.name}.png"

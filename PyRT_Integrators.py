@@ -97,7 +97,7 @@ class Integrator(ABC):
         spread inside the pixel (see PyRT_Sampling.sampled_row).
 
         The colours come flat, [r0, g0, b0, r1, g1, b1, ...]: a flat list of floats becomes
-        an array three times faster than a list of colours. Camera rays start at no
+        an array sooner than a list of colours does. Camera rays start at no
         surface, so t_min = 0: they see objects at any distance."""
         if samples_per_pixel > 1:
             return sampled_row(self, y, samples_per_pixel)

@@ -141,8 +141,8 @@ def _worker_payload(integrator):
     which they do not need.
 
     The main process renders its share with the copy: pickling made CPython move the
-    attributes of the originals into dictionaries, where every read is slower (renders
-    took 10% longer); the unpickled copy keeps the compact layout."""
+    attributes of the originals into dictionaries, where every read is slower; the
+    unpickled copy keeps the compact layout."""
     if debugger_attached():
         return None, None, "a debugger is attached (so that breakpoints in compute_color work)"
     if multiprocessing.current_process().daemon:
@@ -172,8 +172,8 @@ class _SharedImage:
         size = int(np.prod(shape))
         if mp.get_start_method() == "fork":
             # Forked workers inherit this mapping. Its pages are zeroed as they are first
-            # written, half of them by the worker, where RawArray zeroes all 6 MB of a
-            # 500 x 500 image here, before the worker can start.
+            # written, half of them by the worker, where RawArray zeroes the whole image
+            # here, before the worker can start.
             self.buffer = mmap.mmap(-1, size * 8)
         else:
             self.buffer = mp.RawArray("d", size)

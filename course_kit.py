@@ -37,7 +37,7 @@ COURSE_MODULES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppR
 # What AppRenderer.py needs besides them, shipped as it is
 SHIPPED_AS_IS = ("PyRT_Images.py", "PyRT_Compare.py", ".vscode/launch.json",
                  ".vscode/settings.json")
-# The course's figures, which PyRT_Compare.py finds in tests/reference/
+# The course's figures, which PyRT_Compare.py finds in references/
 FIGURES = ("figure1_phong.png", "figure2_lazy.png", "figure3_intersection.png",
            "figure4_depth.png", "figure4_normal.png", "figure5_phong.png")
 # The students' checks: kit/checks/<name> goes to tests/<name> in the handout
@@ -202,7 +202,7 @@ def handout_files():
     files = {name: strip_solution((REPO / name).read_text(encoding="utf-8"), name).encode()
              for name in COURSE_MODULES}
     files.update({name: (REPO / name).read_bytes() for name in SHIPPED_AS_IS})
-    files.update({f"tests/reference/{name}": (REPO / "tests" / "reference" / name).read_bytes()
+    files.update({f"references/{name}": (REPO / "references" / name).read_bytes()
                   for name in FIGURES})
     files.update({f"tests/{name}": (CHECKS / name).read_bytes() for name in CHECK_FILES})
     files["tests/expected/practice1.npz"] = EXPECTED.read_bytes()

@@ -1,7 +1,7 @@
-"""Renders the course's figures into tests/reference/, the images test_references.py expects.
+"""Renders the course's figures into references/, the images test_references.py expects.
 
 Every entry of AppRenderer.FIGURES is rendered at 500 x 500 pixels with AppRenderer's own
-scenes and integrators, and its PNG is written to tests/reference/<figure>_<integrator>.png:
+scenes and integrators, and its PNG is written to references/<figure>_<integrator>.png:
 
     figure1_phong.png         Phong on the Cornell box (Figure 1)
     figure2_lazy.png          Lazy on the sphere scene (Figure 2)
@@ -54,9 +54,10 @@ from helpers import small_cornell_box  # noqa: E402
 
 SAMPLED_REFERENCE_SIZE = 32
 SAMPLED_REFERENCE_SAMPLES = 1024
-SAMPLED_REFERENCE = REFERENCE_DIR / "cornell_phong_{0}x{0}_{1}spp.npy".format(
+DATA_DIR = TESTS / "data"  # what only the tests read
+SAMPLED_REFERENCE = DATA_DIR / "cornell_phong_{0}x{0}_{1}spp.npy".format(
     SAMPLED_REFERENCE_SIZE, SAMPLED_REFERENCE_SAMPLES)
-COURSE_SEAMS = REFERENCE_DIR / "course_figure1_seams.npz"
+COURSE_SEAMS = DATA_DIR / "course_figure1_seams.npz"
 SEAM_BAND = 3  # pixels either side of the diagonals
 
 

@@ -356,7 +356,7 @@ def test_a_render_of_a_few_pixels_keeps_the_plain_queries():
 # ------------------------------------------------------------------------------------------
 # The seams of Figure 1, as the course renders them
 # ------------------------------------------------------------------------------------------
-COURSE_SEAMS = REPO / "tests" / "reference" / "course_figure1_seams.npz"
+COURSE_SEAMS = REPO / "tests" / "data" / "course_figure1_seams.npz"
 
 
 def test_figure1_shows_on_its_seams_what_the_course_renders(all_figures):

@@ -291,10 +291,10 @@ def test_a_figure_without_a_reference_is_reported_not_raised(tmp_path, capsys):
                                             tmp_path, (500, 500))
     assert sheet == tmp_path / "figures_vs_reference.png" and sheet.is_file()
     assert capsys.readouterr().out.splitlines() == [
-        "Compared with the course's figures (tests/reference/):",
+        "Compared with the course's figures (references/):",
         "  figure2_lazy: matches (largest difference 0/255)",
         "  figure9_extra: no reference image to compare with "
-        "(tests/reference/figure9_extra.png is missing)",
+        "(references/figure9_extra.png is missing)",
         f"Saved {sheet}: each figure beside the course's, and their difference"]
 
 
@@ -306,7 +306,7 @@ def test_compare_with_course_warns_that_more_rays_per_pixel_change_the_edges(
     renders = {"figure2_lazy": REFERENCE_DIR / "figure2_lazy.png"}
     AppRenderer.compare_with_course(renders, tmp_path, (500, 500), samples_per_pixel=4)
     assert capsys.readouterr().out.splitlines()[:3] == [
-        "Compared with the course's figures (tests/reference/):",
+        "Compared with the course's figures (references/):",
         "(the figures have one ray per pixel: with more, the edges differ from them)",
         "  figure2_lazy: matches (largest difference 0/255)"]
     assert sheets == [tmp_path / "figures_vs_reference.png"]
@@ -343,7 +343,7 @@ def test_bad_option_exits_with_a_usage_error_naming_it(tmp_path, arguments, name
 # ------------------------------------------------------------------------------------------
 # The command line, read in this process
 # ------------------------------------------------------------------------------------------
-HELP_REFERENCE = REFERENCE_DIR / "app_help.txt"
+HELP_REFERENCE = REPO / "tests" / "data" / "app_help.txt"
 
 
 @pytest.fixture
@@ -355,7 +355,7 @@ def command_line(monkeypatch):
 
 
 def test_help_is_the_reference_help(command_line, capsys):
-    # tests/reference/app_help.txt holds the help a student sees, checked against the
+    # tests/data/app_help.txt holds the help a student sees, checked against the
     # README's table of options: the same options, defaults and meanings. The words are
     # compared, not the layout, which differs a little between Python versions.
     with pytest.raises(SystemExit) as exited:

@@ -29,13 +29,12 @@ import practice1_checks as checks  # noqa: E402  (found through the line above)
 
 HANDOUT_FILES = [
     ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
-    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Images.py", "PyRT_Integrators.py", "out/.gitkeep",
-    "pytest.ini",
-    "requirements.txt", "tests/expected/practice1.npz", "tests/practice1_checks.py",
-    "tests/reference/figure1_phong.png", "tests/reference/figure2_lazy.png",
-    "tests/reference/figure3_intersection.png", "tests/reference/figure4_depth.png",
-    "tests/reference/figure4_normal.png", "tests/reference/figure5_phong.png",
-    "tests/test_practice1.py"]
+    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Images.py", "PyRT_Integrators.py",
+    "out/.gitkeep", "pytest.ini", "references/figure1_phong.png",
+    "references/figure2_lazy.png", "references/figure3_intersection.png",
+    "references/figure4_depth.png", "references/figure4_normal.png",
+    "references/figure5_phong.png", "requirements.txt", "tests/expected/practice1.npz",
+    "tests/practice1_checks.py", "tests/test_practice1.py"]
 CHECK_TESTS = {  # the students' tests, by the step in their names
     "test_assignment_1_1_lazy_image": "1.1", "test_assignment_1_2_any_hit": "1.2",
     "test_assignment_1_2_render_loop_rays": "1.2",
@@ -116,12 +115,13 @@ def test_no_line_of_the_solution_is_left_in_the_handout(handout):
     for name, text in texts.items():
         stripped = {line.strip() for line in text.splitlines()}
         assert not distinctive & stripped, name
-        assert not re.search(r"^\s*(from|import) PyRT_Rendering", text, re.MULTILINE), name
+        assert not re.search(r"^\s*(from|import) PyRT_(Rendering|Sampling|Workers|Acceleration)",
+                             text, re.MULTILINE), name
         assert not re.search(r"# (ASSIGNMENT \S+|FRAMEWORK ONLY) (BEGIN|END)", text), name
     # The expected images are the only data made from the solution
     binary = sorted(name for name in tree(handout) if name.endswith((".png", ".npz")))
-    assert binary == ["tests/expected/practice1.npz"] + [
-        f"tests/reference/{name}" for name in course_kit.FIGURES]
+    assert binary == [f"references/{name}" for name in course_kit.FIGURES] + [
+        "tests/expected/practice1.npz"]
 
 
 def test_the_handout_has_the_courses_stubs(handout):

@@ -1,5 +1,5 @@
 """Each figure of the course, rendered at 500 x 500 by `python AppRenderer.py --all-figures`
-as a student renders it, matches its reference image in tests/reference/ (made by
+as a student renders it, matches its reference image in references/ (made by
 tests/make_references.py) to within one 8-bit step per channel, compared by
 PyRT_Compare.compare_with_reference.
 
