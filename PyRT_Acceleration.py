@@ -38,7 +38,7 @@ from PyRT_Common import (BLACK, INFINITY, OFFSET_SCALE, SHADOW_EPSILON, SQUARES_
                          SQUARES_LOW, Dot, HitData, Length, RGBColor, Vector3D,
                          euclidean_length, unit_components)
 from PyRT_Core import (EDGE_TOLERANCE, UNIT_HIGH, UNIT_LOW, InfinitePlane, Lambertian,
-                       Parallelogram, Scene, Sphere, unit_direction)
+                       Parallelogram, Scene, Sphere)
 
 # Culling margins, relative to the size of the scene (scene_size): an object's cone is that
 # of a sphere CLEARANCE larger than the object, a light must lie CLEARANCE away from a
@@ -62,6 +62,7 @@ QUERY_FUNCTIONS = {
     "PyRT_Core.Scene.closest_hit": "b8f3be4604f3fb81",
     "PyRT_Core.Scene.any_hit": "b4260ae7059b6f3d",
     "PyRT_Core.unit_direction": "a918a0f2d2309304",
+    "PyRT_Core.plane_distance": "0654dba6f824c144",
     "PyRT_Core.Normalize": "41257e0e7f7f37cd",
     "PyRT_Core.Length": "4b4d97bb903012e7",
     "PyRT_Core.Dot": "5968b1bc66a4e991",
@@ -70,8 +71,8 @@ QUERY_FUNCTIONS = {
 }
 INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
     Sphere: ("PyRT_Core.Sphere.intersect", "2677b580cdc27c92"),
-    InfinitePlane: ("PyRT_Core.InfinitePlane.intersect", "f9fe565f2ad66d6f"),
-    Parallelogram: ("PyRT_Core.Parallelogram.intersect", "f0e341192758a0f6"),
+    InfinitePlane: ("PyRT_Core.InfinitePlane.intersect", "160459be816b77d7"),
+    Parallelogram: ("PyRT_Core.Parallelogram.intersect", "097e24d3fd5a174c"),
 }
 PHONG_FUNCTIONS = {  # PhongIntegrator.compute_color and what it calls besides the queries
     "PyRT_Integrators.PhongIntegrator.compute_color": "4c6b5443bdfb642b",
@@ -243,11 +244,7 @@ class AcceleratedQueries:
         d = ray.d
         dx, dy, dz = d.x, d.y, d.z
         if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:
-            try:
-                d = unit_direction(ray)
-            except ValueError:
-                return Scene.closest_hit(self.scene, ray)  # which reports it
-            dx, dy, dz = d.x, d.y, d.z
+            return Scene.closest_hit(self.scene, ray)  # a direction to normalise: rare
         o = ray.o
         ox, oy, oz = o.x, o.y, o.z
         nearest = self.nearest(ray, ox, oy, oz, dx, dy, dz, ray.t_min, ray.t_max)
@@ -292,11 +289,7 @@ class AcceleratedQueries:
         d = ray.d
         dx, dy, dz = d.x, d.y, d.z
         if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:
-            try:
-                d = unit_direction(ray)
-            except ValueError:
-                return Scene.any_hit(self.scene, ray)  # which reports it, or not
-            dx, dy, dz = d.x, d.y, d.z
+            return Scene.any_hit(self.scene, ray)  # a direction to normalise: rare
         o = ray.o
         ox, oy, oz, t_min, t_max = o.x, o.y, o.z, ray.t_min, ray.t_max
         entries = self.everywhere

@@ -76,6 +76,17 @@ def unit_direction(ray):
     return Normalize(d)
 
 
+def plane_distance(ray, d, normal, point):
+    """Where the ray, of unit direction d, meets the plane through point with the given unit
+    normal: t = (point - o).n / (d.n), as the course computes it; None when that is not in
+    [ray.t_min, ray.t_max], or when the ray runs parallel to the plane (d.n = 0)."""
+    denominator = Dot(d, normal)
+    if denominator == 0.0:
+        return None
+    t = Dot(normal, point - ray.o) / denominator
+    return t if ray.t_min <= t <= ray.t_max else None
+
+
 class _GeometricAttribute:
     """An attribute of a primitive or camera from which its owner precomputes constants
     (_derive): assigning it derives them anew, so that `sphere.radius = 3` moves the
@@ -301,12 +312,9 @@ class InfinitePlane(Primitive):
 
     def intersect(self, ray):
         d, n = unit_direction(ray), self._normal
-        denominator = Dot(d, n)
-        if denominator == 0.0:
-            return HitData()  # parallel to the plane
-        t = Dot(n, self._origin - ray.o) / denominator
+        t = plane_distance(ray, d, n, self._origin)
         # A ray nearly parallel to the plane can overflow t to infinity: no hit there.
-        if not ray.t_min <= t <= ray.t_max or t == INFINITY:
+        if t is None or t == INFINITY:
             return HitData()
         return HitData(True, ray.o + d * t, Vector3D(n.x, n.y, n.z), t)
 
@@ -314,8 +322,8 @@ class InfinitePlane(Primitive):
 class Parallelogram(Primitive):
     """The region {point + a*s1 + b*s2 : 0 <= a, b <= 1}, edges and corners included.
 
-    The ray meets the supporting plane (unit normal n, along s1 x s2) as an InfinitePlane
-    does, at p. With q = p - point and m = s1 x s2, the coordinates are
+    The ray meets the supporting plane (unit normal n, along s1 x s2) at p, as it meets an
+    InfinitePlane (plane_distance). With q = p - point and m = s1 x s2, the coordinates are
     a = q.(s2 x m)/(m.m) and b = q.(m x s1)/(m.m), exact for any pair of non-parallel sides,
     orthogonal or not. The normal is flipped to face the ray."""
 
@@ -352,11 +360,8 @@ class Parallelogram(Primitive):
 
     def intersect(self, ray):
         d, n = unit_direction(ray), self.normal
-        denominator = Dot(d, n)
-        if denominator == 0.0:
-            return HitData()  # parallel to the plane
-        t = Dot(n, self._point - ray.o) / denominator
-        if not ray.t_min <= t <= ray.t_max:
+        t = plane_distance(ray, d, n, self._point)
+        if t is None:
             return HitData()
         p = ray.o + d * t
         q = p - self._point
@@ -364,7 +369,7 @@ class Parallelogram(Primitive):
         if not (low <= Dot(q, self.coordinate_a) <= high
                 and low <= Dot(q, self.coordinate_b) <= high):
             return HitData()  # outside the parallelogram, on its plane
-        facing = n * -1.0 if denominator > 0.0 else Vector3D(n.x, n.y, n.z)
+        facing = n * -1.0 if Dot(d, n) > 0.0 else Vector3D(n.x, n.y, n.z)
         return HitData(True, p, facing, t)
 
 

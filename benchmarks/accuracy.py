@@ -23,7 +23,6 @@ import contextlib
 import io
 import json
 import statistics
-import sys
 import tempfile
 import time
 from math import log, log10
@@ -36,7 +35,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from AppRenderer import FIGURES, positive_arg
-from benchmarks.timing import (OUT_DIR, SCENE_NAMES, figure_label, label, markdown_table,
+from benchmarks.timing import (OUT_DIR, run_command, SCENE_NAMES, figure_label, label, markdown_table,
                                prepared, progress, write_report)
 from PyRT_Integrators import Integrator
 from PyRT_Sampling import ACCURACY_SUFFIX, ADAPTIVE_TOLERANCE
@@ -306,7 +305,4 @@ def main(argv: list | None = None) -> int:
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except KeyboardInterrupt:
-        sys.exit(130)
+    run_command(main)

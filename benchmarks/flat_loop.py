@@ -58,6 +58,7 @@ def flat_phong(scene) -> np.ndarray:
             ox = oy = oz = 0.0
             rx, ry, rz, t_min, t_max = dx, dy, dz, 0.0, INFINITY
             shadow_rays = None  # the lights left to test, once the camera ray has hit
+            tx = ty = tz = to_light = ir = ig = ib = 0.0  # the light of the shadow ray
             while True:
                 nearest = None
                 for sphere, k, kd in objects:

@@ -19,7 +19,6 @@ Results go to out/benchmark.md next to the repository's modules.
 import argparse
 import random
 import statistics
-import sys
 import tempfile
 import time
 from functools import partial
@@ -29,7 +28,7 @@ import numpy as np
 
 from AppRenderer import FIGURES, SCENES, positive_arg
 from benchmarks.flat_loop import flat_phong
-from benchmarks.timing import (OUT_DIR, SCENE_NAMES, figure_label, label, markdown_table,
+from benchmarks.timing import (OUT_DIR, run_command, SCENE_NAMES, figure_label, label, markdown_table,
                                paired_ratio, prepared, progress, timed_turns, write_report)
 from PyRT_Common import Normalize, RGBColor, Vector3D
 from PyRT_Core import Camera, Lambertian, Parallelogram, PointLight, Scene
@@ -202,7 +201,4 @@ def main(argv: list | None = None) -> int:
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except KeyboardInterrupt:
-        sys.exit(130)
+    run_command(main)

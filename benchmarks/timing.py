@@ -118,3 +118,12 @@ def write_report(path: Path, title: str, body: str) -> None:
 def progress(message: str) -> None:
     """Tells the user, on stderr, what is being measured."""
     print(message, file=sys.stderr, flush=True)
+
+
+def run_command(main: Callable[[], int]) -> None:
+    """Runs a benchmark's main() as a command: its result is the exit status, and Ctrl+C
+    stops it with the status 130 instead of a traceback."""
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:
+        sys.exit(130)
