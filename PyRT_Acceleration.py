@@ -76,7 +76,7 @@ INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
 }
 PHONG_FUNCTIONS = {  # PhongIntegrator.compute_color and what it calls besides the queries
     "PyRT_Integrators.PhongIntegrator.compute_color": "4c6b5443bdfb642b",
-    "PyRT_Integrators.shadow_ray": "7c2282842ec80449",
+    "PyRT_Integrators.shadow_ray": "435deae3a4246ea0",
     "PyRT_Integrators.Length": "4b4d97bb903012e7",
     "PyRT_Integrators.Dot": "5968b1bc66a4e991",
     "PyRT_Core.Primitive.get_BRDF": "5009389ae19f8874",
@@ -356,7 +356,7 @@ class AcceleratedPhong:
         kd, ambient = brdf.kd, self.ambient
         kr, kg, kb = kd.r, kd.g, kd.b
         red, green, blue = kr * ambient.r, kg * ambient.g, kb * ambient.b
-        size = max(px, -px, py, -py, pz, -pz) + t
+        size = max(abs(px), abs(py), abs(pz)) + t
         if size == 0.0:  # shadow_ray takes the size from each light's distance
             return self.plain_color(ray)
         offset = OFFSET_SCALE * size

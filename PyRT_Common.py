@@ -400,7 +400,7 @@ def shadow_ray(hit, target):
     p, n = hit.hit_point, hit.normal
     px, py, pz, nx, ny, nz = p.x, p.y, p.z, n.x, n.y, n.z
     tx, ty, tz = target.x, target.y, target.z
-    size = max(px, -px, py, -py, pz, -pz) + hit.hit_distance  # the largest |coordinate|
+    size = max(abs(px), abs(py), abs(pz)) + hit.hit_distance  # the largest |coordinate|
     if size == 0.0:  # a hit at the origin, where its ray starts: the target gives the size
         size = euclidean_length(tx - px, ty - py, tz - pz)
     offset = OFFSET_SCALE * size
