@@ -11,9 +11,9 @@ scenes and integrators, and its PNG is written to references/<figure>_<integrato
     figure5_phong.png         Phong on the sphere scene (Figure 5)
 
 These images are the course's expected results, and the tests compare every change with
-them. Beside them it writes the linear image (.npy) of a small Cornell box, Phong, with
-SAMPLED_REFERENCE_SAMPLES jittered rays per pixel: what the anti-aliasing tests of
-test_rendering.py measure the error of fewer samples against, stored so that a bias of
+them. Into tests/data/, what only the tests read, it writes the linear image (.npy) of a
+small Cornell box, Phong, with SAMPLED_REFERENCE_SAMPLES jittered rays per pixel: what the
+anti-aliasing tests measure the error of fewer samples against, stored so that a bias of
 the sampling shows as an error that no number of samples removes.
 
     cornell_phong_32x32_1024spp.npy

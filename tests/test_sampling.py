@@ -162,7 +162,7 @@ def test_bad_render_option_raises_value_error_naming_it(tmp_path, option, value)
 # Where the samples go: strata, uniform and adaptive
 # ------------------------------------------------------------------------------------------
 # N samples per pixel form a grid of a x b cells as square as N allows, a rows and b
-# columns, a <= b (README): worked out by hand.
+# columns, a <= b (docs/sampling.md): worked out by hand.
 GRIDS = {2: (1, 2), 4: (2, 2), 6: (2, 3), 7: (1, 7), 8: (2, 4), 9: (3, 3), 12: (3, 4),
          16: (4, 4)}
 
@@ -235,8 +235,8 @@ def test_adaptive_render_refines_both_pixels_across_an_edge_one_sample_per_strat
 
 
 def test_refined_pixels_get_the_rays_of_uniform_sampling_and_its_colours(tmp_path):
-    # README: after the centre ray, which only finds the edge, a refined pixel gets the
-    # jittered rays of the uniform N-sample render, so the same colour bit for bit
+    # docs/sampling.md: after the centre ray, which only finds the edge, a refined pixel
+    # gets the jittered rays of the uniform N-sample render, so the same colour bit for bit
     uniform = StepAt(str(tmp_path / "uniform"), 2.3)
     uniform_image = render_image(uniform, fov90_scene(5, 4), workers=1, samples_per_pixel=4)
     adaptive = StepAt(str(tmp_path / "adaptive"), 2.3)

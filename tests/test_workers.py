@@ -458,7 +458,8 @@ def with_clock_and_two_cores(monkeypatch, tick):
 
 
 def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch):
-    # README: short renders stay in one process, where starting workers would cost more.
+    # docs/performance.md: short renders stay in one process, where starting workers
+    # would cost more.
     # The first of the 4 rows takes one tick, 1 ms: the other 3 would take 3 ms in one
     # process, and the refined pixels as long, far less than PARALLEL_MIN_SECONDS.
     with_clock_and_two_cores(monkeypatch, 0.001)
