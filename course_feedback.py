@@ -21,7 +21,8 @@ body { font-family: sans-serif; max-width: 60em; margin: 2em auto; padding: 0 1e
        color: #222; }
 h1 { font-size: 1.5em; } h2 { font-size: 1.2em; margin-top: 2em; }
 .passed { color: #17692b; } .failed { color: #a31919; }
-section.step { border-top: 1px solid #ccc; }
+section.step { border-top: 1px solid #ccc; padding-bottom: 1em; }
+details { margin: 1em 0; }
 pre { background: #f4f4f4; padding: 0.6em; overflow-x: auto; white-space: pre-wrap; }
 figure { display: inline-block; margin: 0 1em 1em 0; text-align: center; }
 img { width: 240px; height: 240px; image-rendering: pixelated; border: 1px solid #999; }
