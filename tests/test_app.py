@@ -330,13 +330,24 @@ def test_compare_with_course_skips_images_of_another_size_and_says_why(tmp_path,
     (["--spp", "4", "--tolerance", "0.1"], "tolerance.*--adaptive"),
     (["--width", "0"], "width"),
 ])
-def test_bad_option_exits_with_a_usage_error_naming_it(tmp_path, arguments, named):
-    small = ["--width", 8, "--height", 8] if "--width" not in arguments else ["--height", 8]
-    result = run_python([APP, *small, *arguments, "--out", tmp_path / "o", "--no-window"],
-                        cwd=tmp_path)
-    assert result.returncode == 2  # argparse's status for a bad command line
+def test_bad_option_exits_with_a_usage_error_naming_it(tmp_path, capsys, arguments, named):
+    small = ["--width", "8", "--height", "8"] if "--width" not in arguments else ["--height", "8"]
+    with pytest.raises(SystemExit) as exited:
+        AppRenderer.main([*small, *arguments, "--out", str(tmp_path / "o"), "--no-window"])
+    assert exited.value.code == 2  # argparse's status for a bad command line
+    stderr = capsys.readouterr().err
+    assert stderr.startswith("usage:")
+    assert re.search(named, stderr), stderr
+    assert not (tmp_path / "o").exists()
+
+
+def test_bad_option_ends_the_script_with_status_2_before_rendering(tmp_path):
+    # The same, as a student runs the script: the process's own exit status and stderr.
+    result = run_python([APP, "--width", 8, "--height", 8, "--spp", "two", "--out",
+                         tmp_path / "o", "--no-window"], cwd=tmp_path)
+    assert result.returncode == 2
     assert result.stderr.startswith("usage:")
-    assert re.search(named, result.stderr), result.stderr
+    assert "--spp" in result.stderr, result.stderr
     assert not (tmp_path / "o").exists()
 
 
