@@ -159,7 +159,7 @@ def write_env_map(path):
     cv2.imwrite(str(path), np.array([[[0, 0, 2], [4, 0, 0]]], dtype=np.float32))  # BGR
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def sphere_test_scene_phong(tmp_path_factory):
     """Phong on sphere_test_scene() at its own 500 x 500 pixels: the objects, their
     materials, the light, the ambient light and the camera all show in this image."""

@@ -49,7 +49,7 @@ def tree(folder):
             for path in sorted(Path(folder).rglob("*")) if path.is_file()}
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def handout(tmp_path_factory):
     return course_kit.write_handout(tmp_path_factory.mktemp("kit") / "handout")
 
@@ -395,7 +395,7 @@ def digest(folder):
                                       in tree(folder).items()}).encode()).hexdigest()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def graded(handout, tmp_path_factory):
     """Every submission of VERDICTS graded with the LIMITS: (the submissions' folder, its
     digest before grading, the results' folder, the records, the outside path)."""
@@ -557,8 +557,11 @@ def test_the_feedback_page_shows_each_step_its_verdict_and_the_images(graded):
     assert "likely mistake: the depth is not clamped at 0" in "".join(page.text)
 
 
-def test_grading_again_skips_what_is_graded_and_regrades_what_changed(graded, monkeypatch):
-    folder, _, results, records, _, config_path = graded
+def test_grading_again_skips_what_is_graded_and_regrades_what_changed(graded, monkeypatch,
+                                                                    tmp_path):
+    folder, _, shared_results, records, _, config_path = graded
+    # A copy of the results, which this test changes and the other tests read as graded
+    results = shutil.copytree(shared_results, tmp_path / "results")
     config = course_grader.load_config(config_path)
     graded_again = []
     original = course_grader.grade_submission
@@ -570,7 +573,7 @@ def test_grading_again_skips_what_is_graded_and_regrades_what_changed(graded, mo
     monkeypatch.setattr(course_grader, "grade_submission", recording)
     again = course_grader.grade_folder(folder, results, config, progress=False)
     assert graded_again == [] and again == [records[name] for name in sorted(VERDICTS)]
-    copy = folder.parent / "changed"
+    copy = tmp_path / "changed"
     shutil.copytree(folder / "syntax_error", copy / "syntax_error")
     course_grader.grade_folder(copy, results, config, progress=False)
     assert graded_again == []  # the same files: the same grading

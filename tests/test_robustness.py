@@ -487,7 +487,7 @@ def render(integrator, scene):
     return scene.rendered_image.copy()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def cornell_references(tmp_path_factory):
     folder = tmp_path_factory.mktemp("reference")
     base = cornell_box_scene(0.75, 2)
@@ -579,7 +579,7 @@ def cornell_seams(scene):
     return seams
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def cornell_seam_pixels():
     return cornell_seams(scaled_copy(cornell_box_scene(0.75, 2), 1.0))
 
