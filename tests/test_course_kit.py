@@ -585,17 +585,23 @@ def test_grading_again_skips_what_is_graded_and_regrades_what_changed(graded, mo
     assert graded_again == ["syntax_error"] * 2
 
 
-def test_a_step_that_sleeps_is_stopped_at_the_wall_clock_limit(handout, tmp_path):
+def run_step_after(prelude, handout, tmp_path, wall_seconds, core=None):
+    """(result, why, output) of step 1.1 run by a StepServer (on `core`, if given) in a copy
+    of the handout whose PyRT_Common.py starts with the lines `prelude`."""
     work = shutil.copytree(handout, tmp_path / "work")
     common = work / "PyRT_Common.py"
-    common.write_text("import time\ntime.sleep(600)\n" + common.read_text())
-    server = course_isolation.StepServer()
+    common.write_text(prelude + common.read_text())
+    server = course_isolation.StepServer(core)
     try:
-        limits = {"cpu_seconds": 60, "wall_seconds": 1, "memory_mib": 2048,
+        limits = {"cpu_seconds": 60, "wall_seconds": wall_seconds, "memory_mib": 2048,
                   "output_kib": 256}
-        result, why, _ = server.run_step(work, tmp_path, "1.1", limits)
+        return server.run_step(work, tmp_path, "1.1", limits)
     finally:
         server.close()
+
+
+def test_a_step_that_sleeps_is_stopped_at_the_wall_clock_limit(handout, tmp_path):
+    result, why, _ = run_step_after("import time\ntime.sleep(600)\n", handout, tmp_path, 1)
     assert result is None
     assert why == ("did not finish within 1 s, the time limit of a step: the code hangs or "
                    "is far too slow")
@@ -604,18 +610,9 @@ def test_a_step_that_sleeps_is_stopped_at_the_wall_clock_limit(handout, tmp_path
 def test_a_step_server_given_a_core_runs_its_steps_there(handout, tmp_path):
     # PyRT's render() starts no workers on one core: the framework graded as a submission
     # then stays in its process, where the guard would refuse the workers
-    work = shutil.copytree(handout, tmp_path / "work")
-    common = work / "PyRT_Common.py"
-    common.write_text("import os\nprint('cores', sorted(os.sched_getaffinity(0)))\n"
-                      + common.read_text())
     core = course_isolation.cores()[-1]
-    server = course_isolation.StepServer(core)
-    try:
-        limits = {"cpu_seconds": 60, "wall_seconds": 300, "memory_mib": 2048,
-                  "output_kib": 256}
-        _, _, output = server.run_step(work, tmp_path, "1.1", limits)
-    finally:
-        server.close()
+    prints_its_cores = "import os\nprint('cores', sorted(os.sched_getaffinity(0)))\n"
+    _, _, output = run_step_after(prints_its_cores, handout, tmp_path, 300, core)
     assert f"cores [{core}]\n" in output
 
 
