@@ -40,36 +40,26 @@ ZIP_DATE = (1980, 1, 1, 0, 0, 0)  # the earliest a zip file holds: no date of wr
 # ------------------------------------------------------------------------------------------
 # The variants of the framework's integrators that make the mistakes' images
 # ------------------------------------------------------------------------------------------
-class DepthVariant(PyRT_Integrators.DepthIntegrator):
-    """Depth as the assignment defines it, or, with clamped False, without the max(.., 0)."""
-
-    def __init__(self, filename_, max_depth_, clamped=True):
-        super().__init__(filename_, max_depth_)
-        self.clamped = clamped
+class UnclampedDepth(PyRT_Integrators.DepthIntegrator):
+    """Depth without the max(.., 0): the grey 1 - hit_distance / max_depth, negative beyond
+    max_depth."""
 
     def compute_color(self, ray):
         hit = self.scene.closest_hit(ray)
         if not hit.has_hit:
             return BLACK
         c = 1.0 - hit.hit_distance / self.max_depth
-        c = max(c, 0.0) if self.clamped else c
         return RGBColor(c, c, c)
 
 
-class NormalVariant(PyRT_Integrators.NormalIntegrator):
-    """Normal as the assignment defines it, or, with mapped False, the normal itself."""
-
-    def __init__(self, filename_, mapped=True):
-        super().__init__(filename_)
-        self.mapped = mapped
+class UnmappedNormals(PyRT_Integrators.NormalIntegrator):
+    """Normal without the mapping to [0, 1]: the normal itself as the colour."""
 
     def compute_color(self, ray):
         hit = self.scene.closest_hit(ray)
         if not hit.has_hit:
             return BLACK
         n = hit.normal
-        if self.mapped:
-            return RGBColor((n.x + 1.0) / 2.0, (n.y + 1.0) / 2.0, (n.z + 1.0) / 2.0)
         return RGBColor(n.x, n.y, n.z)
 
 
@@ -104,8 +94,8 @@ class PhongVariant(PyRT_Integrators.PhongIntegrator):
 def mistake_integrator(mistake, filename):
     """The integrator that makes the image of a mistake of RENDERED_MISTAKES."""
     return {
-        "unclamped_depth": lambda: DepthVariant(filename, 5, clamped=False),
-        "unmapped_normals": lambda: NormalVariant(filename, mapped=False),
+        "unclamped_depth": lambda: UnclampedDepth(filename, 5),
+        "unmapped_normals": lambda: UnmappedNormals(filename),
         "no_ambient": lambda: PhongVariant(filename, ambient=False),
         "no_shadows": lambda: PhongVariant(filename, shadows=False),
         "no_inverse_square": lambda: PhongVariant(filename, inverse_square=False),
