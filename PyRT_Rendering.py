@@ -121,9 +121,10 @@ def rendered_blocks(integrator, workers, sampling, progress):
 
 def _report_non_finite(image, name):
     """One line on stderr when some pixels are NaN or infinite: how many, and the first."""
-    if np.isfinite(image).all():
+    finite = np.isfinite(image)
+    if finite.all():
         return
-    bad = ~np.isfinite(image).all(axis=2)
+    bad = ~finite.all(axis=2)
     y, x = np.argwhere(bad)[0]
     print(f"PyRT warning: {name}.compute_color returned NaN or infinite values for "
           f"{int(bad.sum())} pixel(s), the first at pixel ({x}, {y}); the PNG shows them as "
