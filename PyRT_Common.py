@@ -374,7 +374,6 @@ class HitData:
                 f"hit_distance={self.hit_distance!r}, primitive_index={self.primitive_index})")
 
 
-
 # A shadow ray stops this fraction of its length short of its target, so that a light
 # lying exactly on a surface is not hidden by that surface.
 SHADOW_EPSILON = 1e-6
@@ -416,6 +415,7 @@ def shadow_ray(hit, target):
         return Ray(Vector3D(ox, oy, oz), Vector3D(nx, ny, nz), 0.0, offset)
     return Ray(Vector3D(ox, oy, oz), Vector3D(dx / distance, dy / distance, dz / distance),
                distance * (1.0 - SHADOW_EPSILON), offset)
+
 
 # ------------------------------------------------------------------------------------------
 # Environment map
