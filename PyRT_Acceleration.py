@@ -35,7 +35,7 @@ from functools import lru_cache
 from math import sqrt
 
 from PyRT_Common import (BLACK, INFINITY, OFFSET_SCALE, SHADOW_EPSILON, SQUARES_HIGH,
-                         SQUARES_LOW, Dot, HitData, Length, RGBColor, Vector3D,
+                         SQUARES_LOW, Dot, HitData, Length, RGBColor, Vector3D, _new,
                          euclidean_length, unit_components)
 from PyRT_Core import (EDGE_TOLERANCE, UNIT_HIGH, UNIT_LOW, InfinitePlane, Lambertian,
                        Parallelogram, Scene, Sphere)
@@ -49,7 +49,6 @@ from PyRT_Core import (EDGE_TOLERANCE, UNIT_HIGH, UNIT_LOW, InfinitePlane, Lambe
 CLEARANCE = 1e-4
 LIGHT_MATCH = 1e-5
 ORIGIN_MARGIN = 1e-12
-_new = object.__new__  # makes an object without calling its __init__
 # Renders of fewer camera rays than this per object list (camera, and each light) leave
 # the plain methods in place: the setup would cost more than it saves.
 MIN_RAYS_PER_LIST = 8

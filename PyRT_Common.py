@@ -37,7 +37,7 @@ PI = pi
 TWO_PI = 2.0 * pi
 INVERTED_PI = 1.0 / pi
 
-_new = object.__new__  # see the speed note above
+_new = object.__new__  # makes an object without calling its __init__ (see above)
 _SCALAR_HINT = ("{verb} a {cls} by a number only; for the element-wise product of two "
                 "{cls} objects use a.multiply(b)")
 
