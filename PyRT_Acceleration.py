@@ -52,6 +52,8 @@ ORIGIN_MARGIN = 1e-12
 # Renders of fewer camera rays than this per object list (camera, and each light) leave
 # the plain methods in place: the setup would cost more than it saves.
 MIN_RAYS_PER_LIST = 8
+# any_hit's next light when there is none: a box that holds no point.
+NO_LIGHT = (INFINITY, -INFINITY) * 3
 
 # The functions whose operations the fast paths repeat, named where the plain code finds
 # them, with the start of the SHA-256 of their source when the fast paths were proven
@@ -203,12 +205,12 @@ class AcceleratedQueries:
     through its own intersect), constants what it reads. A ray of unit direction d with
     d.u < cos_limit cannot hit the object (its cone), nor can a ray from origin o with
     o.s > side_limit (the flat object's plane lies beyond the ray's end, seen from o).
-    Lists: from_camera, for
-    rays that start at the camera (the origin); towards_light[i], for rays that end at
-    point light i (shadow rays): (its x, y, z, its clear_box, the shorter list of the
-    entries left to test from an origin inside that box, its entries with the cones seen
-    from the light, reversed, i); everywhere, for any other ray, with nothing left
-    out."""
+    Lists: from_camera, for rays that start at the camera (the origin); everywhere, for
+    any other ray, with nothing left out; and for the rays that end at point light i
+    (shadow rays), towards_light[i]: (x_low, x_high, y_low, y_high, z_low, z_high), the
+    box around the light where such a ray ends, then its clear_box, the shorter list of
+    the entries left to test from an origin inside that box, its entries with the cones
+    seen from the light, reversed, and the index of the light after it."""
 
     def __init__(self, scene):
         self.scene = scene
@@ -222,21 +224,20 @@ class AcceleratedQueries:
         self.from_camera = [
             entry[:4] + cone(entry[3], origin, scale, entry[0] is not None) + entry[8:]
             for entry in self.everywhere]
+        self.light_match = within = LIGHT_MATCH * scale
         self.towards_light = []
-        for light in lights:
+        for number, light in enumerate(lights, 1):
             entries = [entry[:4] + _reversed(cone(entry[3], light.pos, scale,
                                                   entry[0] is not None))
                        + plane_beyond(entry[3], light.pos, scale, entry[0] is not None)
                        for entry in self.everywhere]
-            box, inside = clear_box(entries)
-            self.towards_light.append((light.pos.x, light.pos.y, light.pos.z, box, inside,
-                                       entries, len(self.towards_light)))
-        # Shadow rays come light after light: any_hit tries the lights in the order of
-        # the rotation that starts with the light after the last one found.
-        self.rotations = [tuple(self.towards_light[i:] + self.towards_light[:i])
-                          for i in range(len(lights))]
-        self.light_match = LIGHT_MATCH * scale
-        self.next_lights = self.rotations[0] if lights else ()
+            x, y, z = light.pos
+            self.towards_light.append((x - within, x + within, y - within, y + within,
+                                       z - within, z + within, *clear_box(entries), entries,
+                                       number % len(lights)))
+        # Shadow rays come light after light: any_hit tries the light after the last one
+        # found first.
+        self.next_light = self.towards_light[0] if lights else NO_LIGHT
 
     def closest_hit(self, ray):
         """Scene.closest_hit(ray)."""
@@ -297,16 +298,15 @@ class AcceleratedQueries:
                 entries = self.from_camera
             elif t_max < INFINITY:  # a shadow ray, when it ends at a light
                 ex, ey, ez = ox + dx * t_max, oy + dy * t_max, oz + dz * t_max
-                within = self.light_match
-                for x, y, z, (x0, x1, y0, y1, z0, z1), inside, all_entries, i in (
-                        self.next_lights):
-                    if (-within <= x - ex <= within and -within <= y - ey <= within
-                            and -within <= z - ez <= within):
-                        rotations = self.rotations
-                        self.next_lights = rotations[i + 1 if i + 1 < len(rotations) else 0]
-                        clear = x0 < ox < x1 and y0 < oy < y1 and z0 < oz < z1
-                        entries = inside if clear else all_entries
-                        break
+                light = self.next_light
+                if not (light[0] <= ex <= light[1] and light[2] <= ey <= light[3]
+                        and light[4] <= ez <= light[5]):
+                    light = self.light_at(ex, ey, ez)
+                if light is not None:
+                    _, _, _, _, _, _, (x0, x1, y0, y1, z0, z1), inside, entries, after = light
+                    self.next_light = self.towards_light[after]
+                    if x0 < ox < x1 and y0 < oy < y1 and z0 < oz < z1:
+                        entries = inside
         for test, constants, _, obj, ux, uy, uz, cos_limit, sx, sy, sz, side_limit in entries:
             if (dx * ux + dy * uy + dz * uz >= cos_limit
                     and ox * sx + oy * sy + oz * sz <= side_limit):
@@ -316,6 +316,14 @@ class AcceleratedQueries:
                 elif test(constants, ox, oy, oz, dx, dy, dz, t_min, t_max) is not None:
                     return True
         return False
+
+    def light_at(self, x, y, z):
+        """The towards_light entry of the first light whose box holds (x, y, z), or None."""
+        for light in self.towards_light:
+            if (light[0] <= x <= light[1] and light[2] <= y <= light[3]
+                    and light[4] <= z <= light[5]):
+                return light
+        return None
 
 
 class AcceleratedPhong:
@@ -335,7 +343,7 @@ class AcceleratedPhong:
         self.longest_shadow_ray = queries.light_match / SHADOW_EPSILON
         self.lights = [(light.pos.x, light.pos.y, light.pos.z, light.intensity.r,
                         light.intensity.g, light.intensity.b) + box + (inside, entries)
-                       for light, (_, _, _, box, inside, entries, _)
+                       for light, (_, _, _, _, _, _, box, inside, entries, _)
                        in zip(scene.pointLights, queries.towards_light)]
 
     def compute_color(self, ray):

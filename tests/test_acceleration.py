@@ -338,7 +338,7 @@ def test_the_setup_holds_objects_times_lights_entries(count):
         scene.add_point_light_sources(PointLight(Vector3D(x, 3.0, 0.0), WHITE_LIGHT))
     fast = AcceleratedQueries(scene)
     lists = [fast.everywhere, fast.from_camera] + [
-        entries for light in fast.towards_light for entries in light[4:6]]
+        entries for light in fast.towards_light for entries in light[7:9]]
     assert sum(map(len, lists)) == 8 * count
 
 
