@@ -413,8 +413,13 @@ def shadow_ray(hit, target):
         euclidean_length(dx, dy, dz))  # Length, without a Vector3D to make
     if distance == 0.0:  # target is the start itself: there is nothing in between
         return Ray(Vector3D(ox, oy, oz), Vector3D(nx, ny, nz), 0.0, offset)
-    return Ray(Vector3D(ox, oy, oz), Vector3D(dx / distance, dy / distance, dz / distance),
-               distance * (1.0 - SHADOW_EPSILON), offset)
+    # Ray(Vector3D(ox, oy, oz), Vector3D(dx, dy, dz) / distance, distance * (1 - SHADOW_EPSILON),
+    # offset), made without the calls of __init__, as the operators make their vectors
+    ray, start, direction = _new(Ray), _new(Vector3D), _new(Vector3D)
+    start.x, start.y, start.z = ox, oy, oz
+    direction.x, direction.y, direction.z = dx / distance, dy / distance, dz / distance
+    ray.o, ray.d, ray.t_max, ray.t_min = start, direction, distance * (1.0 - SHADOW_EPSILON), offset
+    return ray
 
 
 # ------------------------------------------------------------------------------------------
