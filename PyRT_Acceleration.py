@@ -9,10 +9,11 @@ of ``AcceleratedPhong``; both give the plain code's answers, bit for bit, faster
 
 - scalar fast paths: the intersection tests of Sphere, InfinitePlane and Parallelogram,
   and the Phong sum, written out on plain floats in the operations and order of the
-  plain code, with a HitData made only for the nearest hit;
+  plain code, with a HitData made only for the nearest hit; for rays from the camera,
+  a wall along the axes is tested without the products by zero, which add nothing;
 - culling: a ray from the camera, or a shadow ray ending at a point light, tests only the
   objects that a ray from that point in its direction can reach (each object's cone, seen
-  from the camera or the light, with a margin far side_limit rounding); and a flat object
+  from the camera or the light, with a margin far above rounding); and a flat object
   cannot block a shadow ray that starts clearly on the light's side of its plane.
 
 It never runs in place of a student's code. A subclass of Scene with its own closest_hit
@@ -222,7 +223,8 @@ class AcceleratedQueries:
                             INFINITY)
                            for index, (obj, (test, constants)) in enumerate(zip(objects, tests))]
         self.from_camera = [
-            entry[:4] + cone(entry[3], origin, scale, entry[0] is not None) + entry[8:]
+            _camera_test(*entry[:2]) + entry[2:4] + cone(entry[3], origin, scale,
+                                                         entry[0] is not None) + entry[8:]
             for entry in self.everywhere]
         self.light_match = within = LIGHT_MATCH * scale
         self.towards_light = []
@@ -623,6 +625,54 @@ def _parallelogram_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     return t
 
 
+def _camera_test(test, constants):
+    """(test, constants) for the rays from the camera, which start at the origin: for a
+    parallelogram whose normal and coordinate vectors lie along the axes,
+    _aligned_wall_distance and its constants; any other test as it is."""
+    if test is not _parallelogram_distance:
+        return test, constants
+    normal, point = constants[0:3], constants[3:6]
+    coordinate_a, coordinate_b = constants[6:9], constants[9:12]
+    k, i, j = (_single_axis(v) for v in (normal, coordinate_a, coordinate_b))
+    if k is None or i is None or j is None:
+        return test, constants
+    numerator = normal[k] * point[k]
+    if numerator == 0.0:  # the camera lies on the plane
+        return test, constants
+    return _aligned_wall_distance, normal + (k, numerator, normal[k], i, point[i],
+                                             coordinate_a[i], j, point[j], coordinate_b[j])
+
+
+def _single_axis(vector):
+    """The index of the one non-zero component of vector, or None."""
+    axes = [axis for axis in range(3) if vector[axis] != 0.0]
+    return axes[0] if len(axes) == 1 else None
+
+
+def _aligned_wall_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
+    """_parallelogram_distance for a ray from the origin o = 0, where the normal n and the
+    coordinate vectors u_a and u_b have one non-zero component each, k, i and j: the
+    products with the zero components (and with o) are signed zeros, which change no
+    non-zero sum, so that t = n_k p_k / (d_k n_k), a = (d_i t - p_i) u_a,i and
+    b = (d_j t - p_j) u_b,j, exactly as there. There a product of zero and an infinite
+    q = d t - p is NaN and fails its test; here too nothing passes then: an infinite t
+    makes d_i t infinite or NaN, an infinite q_i or q_j fails its own test, and for a
+    finite t, q_k is near zero, the hit lying on the plane."""
+    _, _, _, k, numerator, n_k, i, p_i, a_i, j, p_j, b_j = constants
+    d = (dx, dy, dz)
+    denominator = d[k] * n_k
+    if denominator == 0.0:
+        return None
+    t = numerator / denominator
+    if not t_min <= t <= t_max:
+        return None
+    if not -EDGE_TOLERANCE <= (d[i] * t - p_i) * a_i <= 1.0 + EDGE_TOLERANCE:
+        return None
+    if not -EDGE_TOLERANCE <= (d[j] * t - p_j) * b_j <= 1.0 + EDGE_TOLERANCE:
+        return None
+    return t
+
+
 def _parallelogram_hit(constants, ox, oy, oz, dx, dy, dz, t):
     """The hit point and normal of Parallelogram.intersect at distance t."""
     nx, ny, nz = constants[:3]
@@ -632,7 +682,7 @@ def _parallelogram_hit(constants, ox, oy, oz, dx, dy, dz, t):
 
 
 _HIT = {_sphere_distance: _sphere_hit, _plane_distance: _plane_hit,
-        _parallelogram_distance: _parallelogram_hit}
+        _parallelogram_distance: _parallelogram_hit, _aligned_wall_distance: _parallelogram_hit}
 
 
 if __name__ == "__main__":

@@ -53,18 +53,33 @@ class OwnParallelogram(Parallelogram):
 coordinates = st.floats(-3.0, 3.0)
 points = st.tuples(coordinates, coordinates, coordinates)
 sides = points.filter(lambda v: sum(c * c for c in v) > 0.25)
+lengths = st.floats(0.5, 3.0) | st.floats(-3.0, -0.5)
+
+
+@st.composite
+def aligned_sides(draw):
+    """Two sides along two different axes (the walls of a room), or one side along an
+    axis and the other in the same plane, askew."""
+    first, second = draw(st.permutations([0, 1, 2]))[:2]
+    s1, s2 = [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
+    s1[first], s2[second] = draw(lengths), draw(lengths)
+    if draw(st.booleans()):
+        s2[first] = draw(lengths)
+    return tuple(s1), tuple(s2)
 
 
 @st.composite
 def random_scenes(draw):
-    """Parallelograms (some of classes of their own), spheres, infinite planes and 1 to 3
-    lights, some of them on an object's surface."""
+    """Parallelograms (some of classes of their own, some along the axes), spheres,
+    infinite planes and 1 to 3 lights, some of them on an object's surface."""
     scene = Scene()
     for point, s1, s2, own in draw(st.lists(st.tuples(points, sides, sides, st.booleans()),
                                             max_size=5)):
         assume(Length(Cross(Vector3D(*s1), Vector3D(*s2))) > 0.3)
         kind = OwnParallelogram if own else Parallelogram
         scene.add_object(kind(Vector3D(*point), Vector3D(*s1), Vector3D(*s2)))
+    for point, (s1, s2) in draw(st.lists(st.tuples(points, aligned_sides()), max_size=3)):
+        scene.add_object(Parallelogram(Vector3D(*point), Vector3D(*s1), Vector3D(*s2)))
     for centre, radius, own in draw(st.lists(st.tuples(points, st.floats(0.1, 1.0),
                                                        st.booleans()), max_size=2)):
         scene.add_object((OwnSphere if own else Sphere)(Vector3D(*centre), radius))
@@ -396,6 +411,22 @@ def test_rays_grazing_a_sphere_get_the_plain_answers(centre, radius):
             d = (u * math.cos(angle) + (v * math.cos(around) + w * math.sin(around))
                  * math.sin(angle))
             assert_same_answers(scene, Ray(Vector3D(0.0, 0.0, 0.0), d, INFINITY, 0.0))
+
+
+@pytest.mark.parametrize("direction", [
+    (0.6, 0.8, -1e-310), (0.6, -0.8, 1e-300), (1.0, 0.0, 0.0), (0.0, -1.0, -5e-324),
+    (1 / math.sqrt(3),) * 2 + (-1 / math.sqrt(3),), (-0.5, -0.5, -math.sqrt(0.5))])
+@pytest.mark.parametrize("scale", [2.0 ** -1000, 1.0, 2.0 ** 1000])
+def test_camera_rays_at_walls_along_the_axes_get_the_plain_answers(direction, scale):
+    # Walls along the axes, one through the camera, met head on, at their corners, at
+    # angles whose distance overflows to infinity and along them: the shorter test that
+    # camera rays get for such walls answers as the plain one.
+    scene = Scene()
+    for point, s1, s2 in [((-1, -1, -1), (2, 0, 0), (0, 2, 0)), ((1, -1, 0), (0, 0, -1), (0, 2, 0)),
+                          ((-1, -1, 0), (2, 0, 0), (0, 0, -1)), ((0, 0, -1), (1, 0, 0), (0, 1, 0)),
+                          ((0, -1, -1), (0, 1, 0), (0, 0, 1))]:
+        scene.add_object(Parallelogram(*(Vector3D(*v) * scale for v in (point, s1, s2))))
+    assert_same_answers(scene, Ray(Vector3D(0.0, 0.0, 0.0), Vector3D(*direction), INFINITY, 0.0))
 
 
 def test_rays_that_end_near_a_light_but_not_at_it_get_the_plain_answers():
