@@ -7,10 +7,11 @@ and they run whenever code of a student's own could be involved. During a render
 with those of ``AcceleratedQueries``, and for ``PhongIntegrator.compute_color`` with that
 of ``AcceleratedPhong``; both give the plain code's answers, bit for bit, faster:
 
-- scalar fast paths: the intersection tests of Sphere, InfinitePlane and Parallelogram,
-  and the Phong sum, written out on plain floats in the operations and order of the
-  plain code, with a HitData made only for the nearest hit; for rays from the camera,
-  a wall along the axes is tested without the products by zero, which add nothing;
+- scalar fast paths: the intersection tests of Sphere, InfinitePlane and Parallelogram
+  (PyRT_ScalarIntersections.py) and the Phong sum, written out on plain floats in the
+  operations and order of the plain code, with a HitData made only for the nearest hit;
+  for rays from the camera, a wall along the axes is tested without the products by
+  zero, which add nothing;
 - culling: a ray from the camera, or a shadow ray ending at a point light, tests only the
   objects that a ray from that point in its direction can reach (each object's cone, seen
   from the camera or the light, with a margin far above rounding); and a flat object
@@ -37,9 +38,10 @@ from math import sqrt
 
 from PyRT_Common import (BLACK, INFINITY, OFFSET_SCALE, SHADOW_EPSILON, SQUARES_HIGH,
                          SQUARES_LOW, Dot, HitData, Length, RGBColor, Vector3D, _new,
-                         euclidean_length, unit_components)
-from PyRT_Core import (EDGE_TOLERANCE, UNIT_HIGH, UNIT_LOW, InfinitePlane, Lambertian,
-                       Parallelogram, Scene, Sphere)
+                         euclidean_length)
+from PyRT_Core import UNIT_HIGH, UNIT_LOW, InfinitePlane, Lambertian, Parallelogram, Scene, Sphere
+from PyRT_ScalarIntersections import (POINT_AND_NORMAL, camera_test, infinite_plane_distance,
+                                      parallelogram_distance, sphere_distance)
 
 # Culling margins, relative to the size of the scene (scene_size): an object's cone is that
 # of a sphere CLEARANCE larger than the object, a light must lie CLEARANCE away from a
@@ -223,7 +225,7 @@ class AcceleratedQueries:
                             INFINITY)
                            for index, (obj, (test, constants)) in enumerate(zip(objects, tests))]
         self.from_camera = [
-            _camera_test(*entry[:2]) + entry[2:4] + cone(entry[3], origin, scale,
+            camera_test(*entry[:2]) + entry[2:4] + cone(entry[3], origin, scale,
                                                          entry[0] is not None) + entry[8:]
             for entry in self.everywhere]
         self.light_match = within = LIGHT_MATCH * scale
@@ -259,7 +261,7 @@ class AcceleratedQueries:
         # HitData(True, Vector3D(px, py, pz), Vector3D(nx, ny, nz), t, index), made without
         # the three calls of __init__, which closest_hit would make for nearly every pixel
         point, normal, hit = _new(Vector3D), _new(Vector3D), _new(HitData)
-        point.x, point.y, point.z, normal.x, normal.y, normal.z = _HIT[test](
+        point.x, point.y, point.z, normal.x, normal.y, normal.z = POINT_AND_NORMAL[test](
             found, ox, oy, oz, dx, dy, dz, t)
         hit.has_hit, hit.hit_point, hit.normal, hit.hit_distance = True, point, normal, t
         hit.primitive_index = index
@@ -361,7 +363,7 @@ class AcceleratedPhong:
         brdf = self.objects[index].get_BRDF()
         if type(brdf) is not Lambertian:
             return self.plain_color(ray)
-        px, py, pz, nx, ny, nz = _HIT[test](constants, ox, oy, oz, dx, dy, dz, t)
+        px, py, pz, nx, ny, nz = POINT_AND_NORMAL[test](constants, ox, oy, oz, dx, dy, dz, t)
         kd, ambient = brdf.kd, self.ambient
         kr, kg, kb = kd.r, kd.g, kd.b
         red, green, blue = kr * ambient.r, kg * ambient.g, kb * ambient.b
@@ -531,7 +533,7 @@ def _reversed(cone_of_light) -> tuple:
 
 
 # ------------------------------------------------------------------------------------------
-# Scalar intersection tests: the intersect methods of PyRT_Core on plain floats
+# The scalar test of each object
 # ------------------------------------------------------------------------------------------
 def _object_test(obj):
     """(test, constants) for an object: its class's scalar test and what the test reads, or
@@ -543,146 +545,13 @@ def _object_test(obj):
         return None, None
     if kind is Sphere:
         c = obj.origin
-        return _sphere_distance, (c.x, c.y, c.z, obj.radius)
+        return sphere_distance, (c.x, c.y, c.z, obj.radius)
     if kind is InfinitePlane:
         n, p = obj.normal, obj.origin
-        return _plane_distance, (n.x, n.y, n.z, p.x, p.y, p.z)
+        return infinite_plane_distance, (n.x, n.y, n.z, p.x, p.y, p.z)
     n, p, a, b = obj.normal, obj.point, obj.coordinate_a, obj.coordinate_b
-    return _parallelogram_distance, (n.x, n.y, n.z, p.x, p.y, p.z,
-                                     a.x, a.y, a.z, b.x, b.y, b.z)
-
-
-def _sphere_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
-    """Sphere.intersect's distance, or None on a miss."""
-    cx, cy, cz, r = constants
-    fx, fy, fz = (ox - cx) / r, (oy - cy) / r, (oz - cz) / r
-    b = fx * dx + fy * dy + fz * dz
-    ax, ay, az = fx - dx * b, fy - dy * b, fz - dz * b
-    disc = 1.0 - (ax * ax + ay * ay + az * az)
-    if disc < 0.0:
-        return None
-    squares = fx * fx + fy * fy + fz * fz
-    distance = sqrt(squares) if SQUARES_LOW < squares < SQUARES_HIGH else (
-        euclidean_length(fx, fy, fz))
-    if b > 0.0:
-        q = -b - sqrt(disc)
-        t0, t1 = q * r, (distance - 1.0) * ((distance + 1.0) / q) * r
-    else:
-        q = sqrt(disc) - b
-        if q == 0.0:
-            t0 = t1 = 0.0
-        else:
-            t0, t1 = (distance - 1.0) * ((distance + 1.0) / q) * r, q * r
-    if t_min <= t0 <= t_max:
-        return t0
-    if t_min <= t1 <= t_max:
-        return t1
-    return None
-
-
-def _sphere_hit(constants, ox, oy, oz, dx, dy, dz, t):
-    """The hit point and normal (px, py, pz, nx, ny, nz) of Sphere.intersect at distance t."""
-    cx, cy, cz, r = constants
-    vx, vy, vz = (ox + dx * t - cx) / r, (oy + dy * t - cy) / r, (oz + dz * t - cz) / r
-    if vx == 0.0 and vy == 0.0 and vz == 0.0:
-        nx, ny, nz = dx * -1.0, dy * -1.0, dz * -1.0
-    else:
-        nx, ny, nz = unit_components(vx, vy, vz)
-    return cx + nx * r, cy + ny * r, cz + nz * r, nx, ny, nz
-
-
-def _plane_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
-    """InfinitePlane.intersect's distance, or None on a miss."""
-    nx, ny, nz, px, py, pz = constants
-    denominator = dx * nx + dy * ny + dz * nz
-    if denominator == 0.0:
-        return None
-    t = (nx * (px - ox) + ny * (py - oy) + nz * (pz - oz)) / denominator
-    if not t_min <= t <= t_max or t == INFINITY:
-        return None
-    return t
-
-
-def _plane_hit(constants, ox, oy, oz, dx, dy, dz, t):
-    """The hit point and normal of InfinitePlane.intersect at distance t."""
-    return ox + dx * t, oy + dy * t, oz + dz * t, constants[0], constants[1], constants[2]
-
-
-def _parallelogram_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
-    """Parallelogram.intersect's distance, or None on a miss."""
-    nx, ny, nz, px, py, pz, uax, uay, uaz, ubx, uby, ubz = constants
-    denominator = dx * nx + dy * ny + dz * nz
-    if denominator == 0.0:
-        return None
-    t = (nx * (px - ox) + ny * (py - oy) + nz * (pz - oz)) / denominator
-    if not t_min <= t <= t_max:
-        return None
-    qx, qy, qz = ox + dx * t - px, oy + dy * t - py, oz + dz * t - pz
-    if not -EDGE_TOLERANCE <= qx * uax + qy * uay + qz * uaz <= 1.0 + EDGE_TOLERANCE:
-        return None
-    if not -EDGE_TOLERANCE <= qx * ubx + qy * uby + qz * ubz <= 1.0 + EDGE_TOLERANCE:
-        return None
-    return t
-
-
-def _camera_test(test, constants):
-    """(test, constants) for the rays from the camera, which start at the origin: for a
-    parallelogram whose normal and coordinate vectors lie along the axes,
-    _aligned_wall_distance and its constants; any other test as it is."""
-    if test is not _parallelogram_distance:
-        return test, constants
-    normal, point = constants[0:3], constants[3:6]
-    coordinate_a, coordinate_b = constants[6:9], constants[9:12]
-    k, i, j = (_single_axis(v) for v in (normal, coordinate_a, coordinate_b))
-    if k is None or i is None or j is None:
-        return test, constants
-    numerator = normal[k] * point[k]
-    if numerator == 0.0:  # the camera lies on the plane
-        return test, constants
-    return _aligned_wall_distance, normal + (k, numerator, normal[k], i, point[i],
-                                             coordinate_a[i], j, point[j], coordinate_b[j])
-
-
-def _single_axis(vector):
-    """The index of the one non-zero component of vector, or None."""
-    axes = [axis for axis in range(3) if vector[axis] != 0.0]
-    return axes[0] if len(axes) == 1 else None
-
-
-def _aligned_wall_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
-    """_parallelogram_distance for a ray from the origin o = 0, where the normal n and the
-    coordinate vectors u_a and u_b have one non-zero component each, k, i and j: the
-    products with the zero components (and with o) are signed zeros, which change no
-    non-zero sum, so that t = n_k p_k / (d_k n_k), a = (d_i t - p_i) u_a,i and
-    b = (d_j t - p_j) u_b,j, exactly as there. There a product of zero and an infinite
-    q = d t - p is NaN and fails its test; here too nothing passes then: an infinite t
-    makes d_i t infinite or NaN, an infinite q_i or q_j fails its own test, and for a
-    finite t, q_k is near zero, the hit lying on the plane."""
-    _, _, _, k, numerator, n_k, i, p_i, a_i, j, p_j, b_j = constants
-    d = (dx, dy, dz)
-    denominator = d[k] * n_k
-    if denominator == 0.0:
-        return None
-    t = numerator / denominator
-    if not t_min <= t <= t_max:
-        return None
-    if not -EDGE_TOLERANCE <= (d[i] * t - p_i) * a_i <= 1.0 + EDGE_TOLERANCE:
-        return None
-    if not -EDGE_TOLERANCE <= (d[j] * t - p_j) * b_j <= 1.0 + EDGE_TOLERANCE:
-        return None
-    return t
-
-
-def _parallelogram_hit(constants, ox, oy, oz, dx, dy, dz, t):
-    """The hit point and normal of Parallelogram.intersect at distance t."""
-    nx, ny, nz = constants[:3]
-    if dx * nx + dy * ny + dz * nz > 0.0:
-        nx, ny, nz = nx * -1.0, ny * -1.0, nz * -1.0
-    return ox + dx * t, oy + dy * t, oz + dz * t, nx, ny, nz
-
-
-_HIT = {_sphere_distance: _sphere_hit, _plane_distance: _plane_hit,
-        _parallelogram_distance: _parallelogram_hit, _aligned_wall_distance: _parallelogram_hit}
+    return parallelogram_distance, (n.x, n.y, n.z, p.x, p.y, p.z,
+                                    a.x, a.y, a.z, b.x, b.y, b.z)
 
 
 if __name__ == "__main__":
