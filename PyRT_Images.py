@@ -21,10 +21,14 @@ def tonemap_image(image, gamma=2.5):
     the whole image (all pixels and channels) is mapped linearly so that its minimum becomes
     0 and its maximum 1, raised to the power 1/gamma and clipped to [0, 1].
 
-    Unlike OpenCV it ignores non-finite values when it looks for the minimum and maximum,
-    so one NaN from a buggy integrator does not turn the whole picture black; NaN and -inf
-    pixels are shown as the minimum, +inf as the maximum. (OpenCV also turns the channels
-    that hold the image's exact minimum into NaN, which the course's PNGs show black.)"""
+    OpenCV's tonemapper itself computes it, on the image in single precision as the course
+    hands it over, so that each value rounds as in the course's PNGs. Unlike OpenCV it
+    ignores non-finite values when it looks for the minimum and maximum, so one NaN from a
+    buggy integrator does not turn the whole picture black; NaN and -inf pixels are shown
+    as the minimum, +inf as the maximum. OpenCV's rounding can make the image's exact
+    minimum slightly negative, whose power is NaN (black in the course's PNGs): it is shown
+    as 0, the minimum. An image beyond single precision's range gets the same mapping in
+    double precision."""
     lo, hi = float(image.min()), float(image.max())  # NaN if any pixel is NaN
     out = image
     if not (isfinite(lo) and isfinite(hi)):
@@ -33,13 +37,29 @@ def tonemap_image(image, gamma=2.5):
             return np.zeros(image.shape, np.float32)
         lo, hi = float(image[finite].min()), float(image[finite].max())
         out = np.nan_to_num(image, nan=lo, posinf=hi, neginf=lo)
+    if -SINGLE_MAX <= lo and hi <= SINGLE_MAX:
+        display = _opencv_tonemap(out.astype(np.float32), gamma)
+        return np.clip(np.nan_to_num(display, nan=0.0, copy=False), 0.0, 1.0, out=display)
     if hi - lo > np.finfo(float).eps:  # OpenCV leaves a flat image as it is
         out = np.subtract(out, lo)
         out /= hi - lo
-    # The power in single precision, as OpenCV computes it, and clipped straight into the
-    # single-precision array, which saves a temporary image.
     display = np.clip(out, 0.0, 1.0, out=np.empty(image.shape, np.float32))
     return np.power(display, np.float32(1.0 / gamma), out=display)
+
+
+SINGLE_MAX = float(np.finfo(np.float32).max)
+
+
+def _opencv_tonemap(image, gamma):
+    """cv2.createTonemap(gamma).process(image) of a single-precision image, without the
+    warning that OpenCV prints on its first call (about how a future version may compute
+    expressions on images of several channels, which is no concern here)."""
+    level = cv2.utils.logging.getLogLevel()
+    cv2.utils.logging.setLogLevel(cv2.utils.logging.LOG_LEVEL_ERROR)
+    try:
+        return cv2.createTonemap(gamma).process(image)
+    finally:
+        cv2.utils.logging.setLogLevel(level)
 
 
 def display_image(image, tonemap=True):

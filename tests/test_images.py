@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import PyRT_Images
-from helpers import PNG_TOLERANCE, read_png
+from helpers import PNG_TOLERANCE, read_png, run_python
 from PyRT_Core import Camera, Scene
 
 
@@ -146,13 +146,33 @@ def test_save_that_cannot_create_its_file_reports_that_error_alone(tmp_path, mon
 # ------------------------------------------------------------------------------------------
 # Tonemapping
 # ------------------------------------------------------------------------------------------
-def test_tonemap_agrees_with_opencv_default_tonemapper():
-    image = np.random.default_rng(3).uniform(0.0, 20.0, size=(16, 12, 3)).astype(np.float32)
-    opencv = cv2.createTonemap(gamma=2.5).process(image.copy())
-    # OpenCV maps the minimum to a tiny negative number and returns its power as NaN; the
-    # course clips the result to [0, 1], which makes that pixel 0
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_tonemap_is_opencvs_default_tonemapper_bit_for_bit(dtype):
+    # A rendered image is double precision; the course gives OpenCV its single-precision
+    # copy, and every value must round as there, or PNG pixels one step apart follow
+    image = np.random.default_rng(3).uniform(0.0, 20.0, size=(64, 48, 3)).astype(dtype)
+    opencv = cv2.createTonemap(gamma=2.5).process(image.astype(np.float32))
+    # OpenCV maps the minimum to a tiny negative number and returns its power as NaN;
+    # PyRT shows it as 0, the minimum
     expected = np.clip(np.nan_to_num(opencv, nan=0.0), 0.0, 1.0)
-    np.testing.assert_allclose(PyRT_Images.tonemap_image(image), expected, atol=1e-3)
+    np.testing.assert_array_equal(PyRT_Images.tonemap_image(image), expected)
+
+
+def test_tonemap_maps_an_image_beyond_single_precision_in_double_precision():
+    # 1e39 has no single-precision value: OpenCV would see infinity and show NaN
+    image = np.array([[[1e39, 0.0, 5e38]], [[2e39, 2e39, 1e39]]])
+    np.testing.assert_allclose(PyRT_Images.tonemap_image(image),
+                               [[[0.5 ** 0.4, 0.0, 0.25 ** 0.4]], [[1.0, 1.0, 0.5 ** 0.4]]],
+                               rtol=1e-6)
+    assert (PyRT_Images.tonemap_image(np.full((1, 2, 3), 1e300)) == 1.0).all()  # flat
+
+
+def test_tonemap_prints_nothing(tmp_path):
+    # OpenCV warns on its first tonemapping in a process; a student must not see it
+    script = ("import numpy as np, PyRT_Images; "
+              "PyRT_Images.tonemap_image(np.random.default_rng(1).random((4, 4, 3)))")
+    done = run_python(["-c", script], tmp_path)
+    assert done.returncode == 0 and done.stdout == done.stderr == "", done.stderr
 
 
 def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
