@@ -80,7 +80,7 @@ INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
 }
 PHONG_FUNCTIONS = {  # PhongIntegrator.compute_color and what it calls besides the queries
     "PyRT_Integrators.PhongIntegrator.compute_color": "4c6b5443bdfb642b",
-    "PyRT_Integrators.shadow_ray": "3b10d5049617cc08",
+    "PyRT_Integrators.shadow_ray": "32ca8d4a3ead2a3b",
     "PyRT_Integrators.Length": "4b4d97bb903012e7",
     "PyRT_Integrators.Dot": "5968b1bc66a4e991",
     "PyRT_Core.Primitive.get_BRDF": "5009389ae19f8874",

@@ -408,9 +408,7 @@ def shadow_ray(hit, target):
     else:  # target lies behind the surface: start below it
         ox, oy, oz = px - nx * offset, py - ny * offset, pz - nz * offset
     dx, dy, dz = tx - ox, ty - oy, tz - oz
-    squares = dx * dx + dy * dy + dz * dz
-    distance = sqrt(squares) if SQUARES_LOW < squares < SQUARES_HIGH else (
-        euclidean_length(dx, dy, dz))  # Length, without a Vector3D to make
+    distance = euclidean_length(dx, dy, dz)  # Length, without a Vector3D to make
     if distance == 0.0:  # target is the start itself: there is nothing in between
         return Ray(Vector3D(ox, oy, oz), Vector3D(nx, ny, nz), 0.0, offset)
     # Ray(Vector3D(ox, oy, oz), Vector3D(dx, dy, dz) / distance, distance * (1 - SHADOW_EPSILON),
