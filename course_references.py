@@ -7,7 +7,9 @@ For each image of practice1_checks.IMAGES, at practice1_checks.SIZE pixels:
 - <name>.seam_pixels and <name>.seam_colors: the seams, (y, x) of each pixel whose colour
   changes when its ray leaves the pixel's centre by SEAM_WIDTH of a pixel (up, down, left
   or right), or, in a Phong image, when its shadow rays ignore the first EPSILON of their
-  way as the course's Ray does; and for each such pixel the colours of all those rays;
+  way as the course's Ray does, or when the course's own arithmetic (course_arithmetic.py)
+  traces its ray, with each shadow ray that students write (SHADOW_RAYS); and for each
+  such pixel the colours of all those rays;
 - <name>.mistake.<mistake>: the image of a known mistake (practice1_checks.LIKELY): rays
   through the pixels' corners for every ray-traced image, and the mistakes of
   practice1_checks.RENDERED_MISTAKES, rendered by the variants of the framework's
@@ -28,6 +30,7 @@ sys.path.insert(0, str(REPO / "kit" / "checks"))
 
 import practice1_checks as checks  # noqa: E402  (found through the line above)
 import PyRT_Integrators  # noqa: E402
+from course_arithmetic import with_course_arithmetic  # noqa: E402
 from PyRT_Common import BLACK, EPSILON, Length, Ray, RGBColor, Vector3D  # noqa: E402
 
 # The rays of a seam pixel's alternatives: its centre moved by SEAM_WIDTH of a pixel
@@ -63,14 +66,43 @@ class UnmappedNormals(PyRT_Integrators.NormalIntegrator):
         return RGBColor(n.x, n.y, n.z)
 
 
+def blocked_beyond_t_min(scene, hit, wi, r):
+    """A shadow ray Ray(hit point, wi, r), which ignores the first EPSILON (its t_min)."""
+    return scene.any_hit(Ray(hit.hit_point, wi, r))
+
+
+def blocked_from_lifted_start(scene, hit, wi, r):
+    """A shadow ray that starts EPSILON along the normal."""
+    return scene.any_hit(Ray(hit.hit_point + hit.normal * EPSILON, wi, r))
+
+
+def blocked_nearer_than_the_light(scene, hit, wi, r):
+    """The closest hit towards the light, nearer than the light."""
+    towards = scene.closest_hit(Ray(hit.hit_point, wi))
+    return towards.has_hit and towards.hit_distance < r
+
+
+def blocked_by_another_object(scene, hit, wi, r):
+    """The closest hit on the way to the light, on an object other than the one lit."""
+    towards = scene.closest_hit(Ray(hit.hit_point, wi, r))
+    return towards.has_hit and towards.primitive_index != hit.primitive_index
+
+
+# The shadow rays that students write (PYRT_SPEC.md, "What students hand in")
+SHADOW_RAYS = (blocked_beyond_t_min, blocked_from_lifted_start,
+               blocked_nearer_than_the_light, blocked_by_another_object)
+
+
 class PhongVariant(PyRT_Integrators.PhongIntegrator):
     """Phong as the assignment describes it, written the way a student writes it (a shadow
-    ray Ray(hit point, wi, r) per light), with parts that can be left out: the ambient
+    ray per light, one of SHADOW_RAYS), with parts that can be left out: the ambient
     term, the shadows, the division by r^2."""
 
-    def __init__(self, filename_, ambient=True, shadows=True, inverse_square=True):
+    def __init__(self, filename_, ambient=True, shadows=True, inverse_square=True,
+                 blocked=blocked_beyond_t_min):
         super().__init__(filename_)
         self.ambient, self.shadows, self.inverse_square = ambient, shadows, inverse_square
+        self.blocked = blocked
 
     def compute_color(self, ray):
         scene = self.scene
@@ -83,7 +115,7 @@ class PhongVariant(PyRT_Integrators.PhongIntegrator):
             to_light = light.pos - hit.hit_point
             r = Length(to_light)
             wi = to_light / r
-            if self.shadows and scene.any_hit(Ray(hit.hit_point, wi, r)):
+            if self.shadows and self.blocked(scene, hit, wi, r):
                 continue
             f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
             color = color + light.intensity.multiply(f) / (r * r if self.inverse_square
@@ -141,6 +173,15 @@ def course_shadow_rays(scene):
     return scene
 
 
+def students_integrators(name, folder):
+    """The integrators of IMAGES[name] as students write them: for Phong one per shadow
+    ray of SHADOW_RAYS, else the framework's own."""
+    if checks.IMAGES[name].integrator == "PhongIntegrator":
+        return [PhongVariant(str(Path(folder) / name), blocked=blocked)
+                for blocked in SHADOW_RAYS]
+    return [checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)]
+
+
 def seams(name, expected, folder):
     """(seam_pixels, seam_colors) of IMAGES[name], as the module docstring says."""
     info = checks.IMAGES[name]
@@ -154,6 +195,8 @@ def seams(name, expected, folder):
     alternatives = [traced_image(integrator, scene(), offset) for offset in SEAM_OFFSETS]
     if info.integrator == "PhongIntegrator":
         alternatives.append(traced_image(integrator, course_shadow_rays(scene())))
+    alternatives += [traced_image(student, with_course_arithmetic(scene()))
+                     for student in students_integrators(name, folder)]
     stack = np.stack(alternatives)  # (K, height, width, 3)
     differs = np.zeros(expected.shape[:2], bool)
     for alternative in stack:
