@@ -4,7 +4,7 @@ feedback page, Gradescope's results.json and the record itself, and grades.csv f
 The record of a submission (grading.json) holds its name, the fingerprint of what was
 graded, where each course module came from, the problems met reading it, and per step:
 step, title, points, max_points, passed, reason, output, and checks, each with name,
-title, passed, reason, message, error and images (kind -> path in the folder).
+title, passed, reason, note, message, error and images (kind -> path in the folder).
 """
 import csv
 import html
@@ -21,6 +21,7 @@ body { font-family: sans-serif; max-width: 60em; margin: 2em auto; padding: 0 1e
        color: #222; }
 h1 { font-size: 1.5em; } h2 { font-size: 1.2em; margin-top: 2em; }
 .passed { color: #17692b; } .failed { color: #a31919; }
+.note { background: #eef4fb; border-left: 3px solid #3a6ea5; padding: 0.4em 0.6em; }
 section.step { border-top: 1px solid #ccc; padding-bottom: 1em; }
 details { margin: 1em 0; }
 pre { background: #f4f4f4; padding: 0.6em; overflow-x: auto; white-space: pre-wrap; }
@@ -97,6 +98,8 @@ def _check_html(check):
     parts = [f"<h3 class=\"{_verdict(check['passed'])}\">{e(check['title'])}: {verdict}</h3>"]
     if not check["passed"]:
         parts.append(f"<pre>{e(check['message'])}</pre>")
+    elif check.get("note"):
+        parts.append(f"<p class=\"note\">Worth knowing: {e(check['note'])}.</p>")
     if check["error"]:
         parts.append(f"<p>The error, with the lines of your code it passed through:</p>"
                      f"<pre>{e(check['error'])}</pre>")

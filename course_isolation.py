@@ -132,7 +132,7 @@ def step_process(workdir, step, result_path, log_path, limits):
     checks = practice1_checks.run_step(step)
     json.dump({"checks": [{"name": check.name, "title": check.title,
                            "passed": check.passed, "reason": check.reason,
-                           "message": check.message, "error": check.error,
+                           "note": check.note, "message": check.message, "error": check.error,
                            "images": {kind: str(path) for kind, path in check.images.items()}}
                           for check in checks],
                "refused": refused}, result)

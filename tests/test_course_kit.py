@@ -336,6 +336,72 @@ def test_an_image_of_a_known_mistake_is_named():
     assert checks.likely_mistake(probe, "probe", data) == checks.LIKELY["not_from_camera"]
 
 
+def test_an_image_that_the_courses_tonemapper_shows_as_the_figure_is_right_with_a_note():
+    # The course's tonemapper maps an image's smallest value to 0 and its largest to 1: an
+    # image that is the expected one scaled by a > 0 and shifted by b makes the same PNG.
+    data = checks.expected_data()
+    red_255 = checks.judge(data["intersection"] * 255.0, "intersection", data)
+    assert red_255.right
+    assert red_255.note.startswith("your red is 255 where PyRT's is 1. The course's "
+                                   "tonemapper maps")
+    assert "matters once lights add up in Phong" in red_255.note
+    times_pi = checks.judge(data["phong_sphere"] * np.pi, "phong_sphere", data)
+    assert times_pi.right and times_pi.note.startswith("your values are 3.14159 times the "
+                                                       "expected ones.")
+    shifted = checks.judge(data["depth"] * 2.0 + 0.5, "depth", data)
+    assert shifted.right and shifted.note.startswith("your values are the expected ones "
+                                                     "times 2, plus 0.5.")
+    assert checks.judge(data["normal"], "normal", data).note == ""
+
+
+def test_an_image_that_the_tonemapper_shows_otherwise_is_still_wrong():
+    data = checks.expected_data()
+    assert not checks.judge(data["phong_sphere"] * (1.0, 2.0, 1.0), "phong_sphere", data).right
+    assert not checks.judge(1.0 - data["depth"], "depth", data).right  # a negative scale
+    assert not checks.judge(np.full((40, 40, 3), 0.5), "depth", data).right  # flat
+    assert not checks.judge(data["probe"] * 2.0, "probe", data).right  # no figure shows it
+    nan = data["depth"] * 2.0
+    nan[0, 0, 0] = np.nan
+    assert not checks.judge(nan, "depth", data).right
+
+
+def test_the_seams_of_the_cornell_box_take_the_background_the_courses_arithmetic_sees():
+    # At 40 x 40 pixels the rays of (35, 4) and (4, 35) pass through corners of the box
+    # (the ceiling meets a side wall, the floor the other); the course's arithmetic has no
+    # edge tolerance and lets them through to the black background.
+    data = checks.expected_data()
+    seams = {tuple(pixel): colours for pixel, colours
+             in zip(data["phong_cornell.seam_pixels"].tolist(),
+                    data["phong_cornell.seam_colors"])}
+    for x, y in ((35, 4), (4, 35)):
+        assert np.any(np.all(seams[(y, x)] == 0.0, axis=1)), (x, y)
+        image = data["phong_cornell"].copy()
+        image[y, x] = 0.0
+        assert checks.judge(image, "phong_cornell", data).right
+    away = data["phong_cornell"].copy()
+    away[20, 10] = 0.0  # the left wall, far from every edge
+    assert not checks.judge(away, "phong_cornell", data).right
+
+
+def test_the_ray_probe_reads_the_numpy_arrays_of_the_2021_22_ray():
+    assert checks.components(np.array([0, 0, 0])) == (0.0, 0.0, 0.0)
+    assert checks.components(np.array([0.25, -1.0, 2.0])) == (0.25, -1.0, 2.0)
+    assert checks.components(course_references.Vector3D(1, 2, 3)) == (1.0, 2.0, 3.0)
+
+
+def test_a_passed_check_with_a_note_shows_it_without_marking_anything_wrong():
+    check = {"name": "intersection", "title": "the Intersection image (Figure 3)",
+             "passed": True, "reason": "", "note": "your red is 255 where PyRT's is 1",
+             "message": "right", "error": "", "images": {}}
+    step = {"step": "1.2", "title": course_grader.STEP_TITLES["1.2"], "points": 25,
+            "max_points": 25, "passed": True, "reason": "", "output": "", "checks": [check]}
+    record = {"submission": "s", "files": {}, "problems": [], "steps": [step], "total": 25,
+              "max_total": 25}
+    page = course_feedback.feedback_html(record)
+    assert "Worth knowing: your red is 255 where PyRT&#x27;s is 1." in page
+    assert "wrong" not in page and 'class="failed"' not in page
+
+
 # ------------------------------------------------------------------------------------------
 # The grader
 # ------------------------------------------------------------------------------------------

@@ -12,7 +12,16 @@ within ABSOLUTE_TOLERANCE + RELATIVE_TOLERANCE x |expected value| (the same colo
 computed in another order differs in its last digits), except on the seams: the pixels
 whose centre lies within SEAM_WIDTH of a pixel of an edge, where two surfaces (or a
 surface and the background, or light and shadow) meet. A ray there may hit either side,
-so such a pixel may also take any of the colours that the rays around its centre see.
+so such a pixel may also take any of the colours that the rays around its centre see, or
+that the course's own arithmetic gives its ray (course_arithmetic.py), with any of the
+shadow rays students write: the crack between two walls that lets a ray through to the
+background included.
+
+The course tells you to check an image by comparing it with its figure, and the course's
+save_image shows an image through its tonemapper, which maps the image's smallest value
+to 0 and its largest to 1. So an image that differs from the expected one only by such a
+scale and shift (a red of RGBColor(255, 0, 0) instead of RGBColor(1, 0, 0)) makes the
+figure's PNG and is right; the check then adds a note saying what differs.
 
 When an image differs, the check says how many pixels differ and where, writes your image,
 the expected one and their difference into out/checks/<check>/, and names the mistake when
@@ -126,15 +135,17 @@ BLACK_HINT = "the image is black: compute_color returns BLACK for every ray"
 
 @dataclass
 class Check:
-    """The verdict of one check: passed or not, a one-line reason when not, the message
-    for the student, the error and the student's own traceback lines when their code
-    raised, and the PNGs written (render, expected, difference)."""
+    """The verdict of one check: passed or not, a one-line reason when not, a note when
+    it passed with something worth knowing, the message for the student, the error and
+    the student's own traceback lines when their code raised, and the PNGs written
+    (render, expected, difference)."""
 
     name: str
     step: str
     title: str
     passed: bool = False
     reason: str = ""
+    note: str = ""
     message: str = ""
     error: str = ""
     images: dict = field(default_factory=dict)
@@ -146,7 +157,7 @@ class Check:
         return self
 
     def succeed(self, note=""):
-        self.passed, self.reason = True, ""
+        self.passed, self.reason, self.note = True, "", note
         self.message = f"Assignment {self.step}, {self.title}: right" + (
             f" ({note})" if note else "")
         return self
@@ -300,14 +311,22 @@ def ray_probe(integrators):
             super().__init__(filename_ + "_RayProbe")
 
         def compute_color(self, ray):
-            o, d = ray.o, ray.d
-            if (o.x, o.y, o.z) != (0.0, 0.0, 0.0):
+            if components(ray.o) != (0.0, 0.0, 0.0):
                 return RGBColor(-1.0, -1.0, -1.0)
-            length = sqrt(d.x * d.x + d.y * d.y + d.z * d.z)
-            return RGBColor((d.x / length + 1) / 2, (d.y / length + 1) / 2,
-                            (d.z / length + 1) / 2)
+            x, y, z = components(ray.d)
+            length = sqrt(x * x + y * y + z * z)
+            return RGBColor((x / length + 1) / 2, (y / length + 1) / 2, (z / length + 1) / 2)
 
     return RayProbe
+
+
+def components(vector):
+    """(x, y, z) of a Vector3D, or of a numpy array of three numbers: the 2021-22 base
+    code's Ray() starts with arrays for its origin and direction."""
+    if hasattr(vector, "x"):
+        return float(vector.x), float(vector.y), float(vector.z)
+    x, y, z = (float(value) for value in vector)
+    return x, y, z
 
 
 def make_integrator(name, filename, integrators):
@@ -385,6 +404,8 @@ def _check_any_hit(check):
 def _check_image(check, folder):
     common, core, integrators = course_modules()
     image_info = IMAGES[check.name]
+    # The course's save_image writes into the folder it is given and creates none
+    folder.mkdir(parents=True, exist_ok=True)
     scene = SCENES[image_info.scene]()
     integrator = make_integrator(check.name, str(folder / "render"), integrators)
     if image_info.integrator not in ("LazyIntegrator", "RayProbe"):
@@ -400,7 +421,7 @@ def _check_image(check, folder):
     data = expected_data()
     verdict = judge(image, check.name, data)
     if verdict.right:
-        return check.succeed()
+        return check.succeed(verdict.note)
     reason = verdict.reason
     if check.name == "lazy" and not np.any(image):
         # LazyIntegrator.compute_color returns BLACK: once render() asks compute_color
@@ -445,13 +466,15 @@ def right_pixels(image, name, data):
 
 @dataclass
 class Verdict:
-    """How an image compares with the expected one: right or not, and if not, which pixels
-    are wrong, a one-line reason and the details for the student."""
+    """How an image compares with the expected one: right or not; if right, a note when it
+    differs in what the course's tonemapper removes; if not, which pixels are wrong, a
+    one-line reason and the details for the student."""
 
     right: bool
     wrong: np.ndarray = None
     reason: str = ""
     details: str = ""
+    note: str = ""
 
 
 def judge(image, name, data):
@@ -465,6 +488,9 @@ def judge(image, name, data):
     count = int(wrong.sum())
     if count == 0:
         return Verdict(True)
+    note = same_after_tonemapping(image, name, data)
+    if note:
+        return Verdict(True, note=note)
     ys, xs = np.nonzero(wrong)
     shown = "; ".join(f"({x}, {y}) is {_rgb(image[y, x])}, expected {_rgb(expected[y, x])}"
                       for y, x in list(zip(ys, xs))[:SHOWN_PIXELS])
@@ -475,6 +501,37 @@ def judge(image, name, data):
     details = (f"  where: x {xs.min()} to {xs.max()}, y {ys.min()} to {ys.max()} (x to the "
                f"right, y down, from 0); first: {shown}")
     return Verdict(False, wrong, reason, details)
+
+
+def same_after_tonemapping(image, name, data):
+    """A note saying how image differs from the expected one, when it differs only in what
+    the course's tonemapper removes: image = scale * expected + shift for one scale > 0 and
+    one shift over all pixels and channels, the tonemapper mapping both images' smallest
+    value to 0 and largest to 1. None when it differs otherwise (or is the ray probe's,
+    which no figure shows)."""
+    expected = data[name]
+    if name == "probe" or not np.all(np.isfinite(image)):
+        return None
+    low, high = float(image.min()), float(image.max())
+    expected_low, expected_high = float(expected.min()), float(expected.max())
+    if not (high > low and expected_high > expected_low):
+        return None
+    scale = (high - low) / (expected_high - expected_low)
+    shift = low - scale * expected_low
+    if not right_pixels((image - shift) / scale, name, data).all():
+        return None
+    if name == "intersection":
+        what = f"your red is {high:.6g} where PyRT's is {expected_high:.6g}"
+    elif abs(shift) <= ABSOLUTE_TOLERANCE + RELATIVE_TOLERANCE * (high - low):
+        what = f"your values are {scale:.6g} times the expected ones"
+    else:
+        what = (f"your values are the expected ones times {scale:.6g}, plus "
+                f"{shift:.6g}")
+    why = ("the values themselves are radiance, which matters once later practices add "
+           "images up" if name.startswith("phong") else "PyRT's colours run from 0 to 1, "
+           "which matters once lights add up in Phong")
+    return (f"{what}. The course's tonemapper maps an image's smallest value to 0 and its "
+            f"largest to 1, so your PNG is the figure's; but {why}")
 
 
 def _rgb(pixel):
