@@ -323,7 +323,8 @@ for light in self.scene.pointLights:
     wi = Normalize(to_light)
     shadow_ray = Ray(hit_data.hit_point, wi, r)
     if not self.scene.any_hit(shadow_ray):
-        color = color + light.intensity.multiply(brdf.get_value(wi, ray.d * -1, hit_data.normal)) / (r * r)
+        value = brdf.get_value(wi, ray.d * -1, hit_data.normal)
+        color = color + light.intensity.multiply(value) / (r * r)
 return color
 """
 PHONG_START_LIFTED_ALONG_NORMAL = """\
@@ -340,7 +341,8 @@ for light in self.scene.pointLights:
     start = hit.hit_point + hit.normal * EPSILON
     if self.scene.any_hit(Ray(start, light_dir, dist)):
         continue
-    diffuse = diffuse + light.intensity.multiply(obj.BRDF.get_value(light_dir, Vector3D(0, 0, 0), hit.normal)) / (dist ** 2)
+    brdf_value = obj.BRDF.get_value(light_dir, Vector3D(0, 0, 0), hit.normal)
+    diffuse = diffuse + light.intensity.multiply(brdf_value) / (dist ** 2)
 return ambient + diffuse
 """
 PHONG_CLOSEST_HIT_DISTANCE = """\

@@ -45,6 +45,7 @@ def real_submissions(tmp_path_factory):
 
 @pytest.fixture(scope="session")
 def graded(real_submissions, tmp_path_factory):
+    """Every submission of FIXTURES graded once, two at a time, with the kit's settings."""
     results = tmp_path_factory.mktemp("real_results")
     records = course_grader.grade_folder(real_submissions, results,
                                          course_grader.load_config(), jobs=2,
