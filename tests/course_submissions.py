@@ -480,7 +480,8 @@ FIXTURES = (
 # OUT` reads the (y, x) pairs of the .npy file PIXELS and saves into OUT the colour of
 # each, compute_color of the camera ray through its centre, rendered at 500 x 500 with
 # the scenes of the submission's own AppRenderer.py (its scene functions only: importing
-# the older editions' AppRenderer.py would render and open a window).
+# the older editions' AppRenderer.py would render and open a window). The 2025-26
+# edition's AppRenderer.py has no Cornell box, so no Figure 1.
 FIGURE_PIXELS_SCRIPT = '''\
 import ast
 import sys
