@@ -1,0 +1,150 @@
+"""The course kit on submissions of real style: the course's four modules written on the
+course's own base code of the students' edition (tests/course_submissions.py), graded by
+course_grader and run through the students' checks in a handout. Each must get the
+verdict a teaching assistant gives it, step by step: full points for a right one, and
+for a mistake a failure of exactly the steps it breaks, for the reason it is."""
+import json
+import shutil
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import course_feedback
+import course_grader
+import course_kit
+import course_submissions as submissions
+from helpers import REPO, run_python
+from test_course_kit import CHECK_TESTS, failures_of_the_checks
+
+FIXTURES = {fixture.name: fixture for fixture in submissions.FIXTURES}
+RIGHT = sorted(name for name, fixture in FIXTURES.items() if not fixture.fails)
+SEAMS = REPO / "tests" / "data" / "course_figure1_seams.npz"
+SEAM_SAMPLE = 4  # every 4th of Figure 1's seam pixels: a second of rendering
+
+
+@dataclass(frozen=True)
+class Graded:
+    """The fixtures graded once: where their results went and their records by name."""
+
+    results: Path
+    records: dict
+
+
+@pytest.fixture(scope="session")
+def real_submissions(tmp_path_factory):
+    """A folder holding every submission of FIXTURES, each in its own folder."""
+    folder = tmp_path_factory.mktemp("real") / "submissions"
+    for fixture in submissions.FIXTURES:
+        submissions.write_course_submission(folder / fixture.name, fixture.edition,
+                                            fixture.answers)
+    return folder
+
+
+@pytest.fixture(scope="session")
+def graded(real_submissions, tmp_path_factory):
+    """Every submission of FIXTURES graded once, two at a time, with the kit's settings."""
+    results = tmp_path_factory.mktemp("real_results")
+    records = course_grader.grade_folder(real_submissions, results,
+                                         course_grader.load_config(), jobs=2,
+                                         progress=False)
+    return Graded(results, {record["submission"]: record for record in records})
+
+
+@pytest.fixture(scope="session")
+def checks_run_by_students(real_submissions, tmp_path_factory):
+    """{submission: {test of the students' checks: its failure message, or None}}: each
+    submission's four files copied over a handout, where `python -m pytest` runs, two
+    submissions at a time."""
+    base = tmp_path_factory.mktemp("real_checks")
+    handout = course_kit.write_handout(base / "handout")
+
+    def run(name):
+        copy = shutil.copytree(handout, base / name)
+        for module in submissions.MODULES:
+            shutil.copyfile(real_submissions / name / module, copy / module)
+        return name, failures_of_the_checks(copy)
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        return dict(pool.map(run, sorted(FIXTURES)))
+
+
+def test_the_fixtures_cover_every_edition_and_style_with_a_right_submission():
+    right = [FIXTURES[name] for name in RIGHT]
+    assert sorted({fixture.edition for fixture in right}) == list(submissions.EDITIONS)
+    styles = {style for fixture in right for style in fixture.styles}
+    assert set(submissions.SHADOW_STYLES) <= styles
+    assert {"Ray() then ray.o and ray.d", "Ray() then ray.d", "Ray(direction=d)",
+            "Ray(Vector3D(0, 0, 0), cam.get_direction(x, y))", "RED", "RGBColor(1, 0, 0)",
+            "RGBColor(255, 0, 0)"} <= styles
+    for edition in submissions.EDITIONS:
+        assert any(fixture.fails for fixture in submissions.FIXTURES
+                   if fixture.edition == edition), edition
+
+
+@pytest.mark.parametrize("name", sorted(FIXTURES))
+def test_each_real_submission_gets_a_teaching_assistants_verdict_step_by_step(graded, name):
+    fixture = FIXTURES[name]
+    steps = {step["step"]: step for step in graded.records[name]["steps"]}
+    assert sorted(steps) == list(submissions.STEPS)
+    for step, verdict in steps.items():
+        expected = fixture.expected(step)
+        if expected is None:
+            assert verdict["passed"] and verdict["points"] == verdict["max_points"], (
+                step, verdict["reason"])
+        else:
+            assert not verdict["passed"] and verdict["points"] == 0, step
+            assert expected in verdict["reason"], (step, verdict["reason"])
+
+
+@pytest.mark.parametrize("name", RIGHT)
+def test_a_right_submission_has_nothing_marked_wrong_in_its_feedback(graded, name):
+    folder = graded.results / name
+    record = json.loads((folder / course_feedback.RECORD).read_text(encoding="utf-8"))
+    assert record["total"] == record["max_total"] == 100
+    assert record["files"] == dict.fromkeys(submissions.MODULES, "submission")
+    failed = [(step["step"], check["name"], check["reason"])
+              for step in record["steps"] for check in step["checks"] if not check["passed"]]
+    assert failed == []
+    assert all(step["checks"] and step["reason"] == "" for step in record["steps"])
+    result = json.loads((folder / course_feedback.GRADESCOPE).read_text(encoding="utf-8"))
+    assert result["score"] == 100
+    assert [test["status"] for test in result["tests"]] == ["passed"] * 4
+    assert 'class="failed"' not in (folder / course_feedback.FEEDBACK).read_text(
+        encoding="utf-8")
+
+
+@pytest.mark.parametrize("name", sorted(FIXTURES))
+def test_the_students_checks_give_each_step_the_same_verdict(checks_run_by_students, name):
+    fixture = FIXTURES[name]
+    failures = checks_run_by_students[name]
+    assert sorted(failures) == sorted(CHECK_TESTS)
+    for step in submissions.STEPS:
+        messages = [message for test, message in failures.items()
+                    if CHECK_TESTS[test] == step and message is not None]
+        expected = fixture.expected(step)
+        if expected is None:
+            assert messages == [], step
+        else:
+            assert any(expected in message for message in messages), (step, messages)
+
+
+def test_the_2023_24_base_renders_figure_1s_seams_as_the_course_did(tmp_path):
+    # On the seams of the Cornell box the course's own arithmetic decides which wall a
+    # ray sees; its shadow rays lifted EPSILON along the normal are what Figure 1 was
+    # rendered with, to the last bit
+    folder = submissions.write_course_submission(tmp_path / "course", "2023-24",
+                                                 submissions.RIGHT_2023)
+    with np.load(SEAMS) as seams:
+        pixels = np.stack([seams["y"], seams["x"]], axis=1)[::SEAM_SAMPLE]
+        course = seams["rgb"][::SEAM_SAMPLE]
+    np.save(folder / "pixels.npy", pixels)
+    result = run_python(["-c", submissions.FIGURE_PIXELS_SCRIPT, "figure1", "pixels.npy",
+                         "colours.npy"], cwd=folder)
+    assert result.returncode == 0, result.stderr
+    colours = np.load(folder / "colours.npy")
+    assert colours.shape == course.shape
+    differ = ~np.all(colours == course, axis=1)
+    assert pixels[differ].tolist() == []
