@@ -4,13 +4,18 @@ import sys
 
 import numpy as np
 
+import AppRenderer
 import course_arithmetic
 import course_kit
+import course_references
 from PyRT_Common import EPSILON, Normalize, Ray, Vector3D
 from PyRT_Core import InfinitePlane, Parallelogram, Scene, Sphere
 
 sys.path.insert(0, str(course_kit.CHECKS))
 import practice1_checks as checks  # noqa: E402  (found through the line above)
+
+COURSE_SEAMS = course_kit.REPO / "tests" / "data" / "course_figure1_seams.npz"
+SEAM_SAMPLE = 5  # every 5th of Figure 1's 6952 seam pixels: a second of rendering
 
 SQUARE = Parallelogram(Vector3D(0.0, 0.0, -2.0), Vector3D(1.0, 0.0, 0.0),
                        Vector3D(0.0, 1.0, 0.0))
@@ -75,3 +80,21 @@ def test_it_lets_the_rays_through_the_cornell_boxs_corners_at_40_pixels():
         ray = Ray(Vector3D(0.0, 0.0, 0.0), scene.camera.get_direction(x, y))
         assert not Scene.closest_hit(course, ray).has_hit
         assert Scene.closest_hit(scene, ray).has_hit
+
+
+def test_it_renders_figure_1s_seams_as_the_course_did():
+    # The course's Figure 1 on the Cornell box's seams (tests/data, stored from the course
+    # framework's own render): with shadow rays lifted EPSILON along the normal, the
+    # course's arithmetic sees at every one of these pixels the surface and the shadows
+    # the course saw, so its colour to the rounding of the terms' order.
+    scene = course_arithmetic.with_course_arithmetic(AppRenderer.cornell_box_scene(0.75, 2))
+    phong = course_references.PhongVariant(
+        "unused", blocked=course_references.blocked_from_lifted_start)
+    phong.add_scene(scene)
+    with np.load(COURSE_SEAMS) as seams:
+        ys, xs, course = (seams[key][::SEAM_SAMPLE] for key in ("y", "x", "rgb"))
+    for y, x, expected in zip(ys.tolist(), xs.tolist(), course):
+        colour = phong.compute_color(Ray(Vector3D(0.0, 0.0, 0.0),
+                                         scene.camera.get_direction(x, y)))
+        np.testing.assert_allclose((colour.r, colour.g, colour.b), expected, rtol=1e-12,
+                                   atol=0, err_msg=f"pixel ({x}, {y})")

@@ -148,3 +148,16 @@ def test_the_2023_24_base_renders_figure_1s_seams_as_the_course_did(tmp_path):
     assert colours.shape == course.shape
     differ = ~np.all(colours == course, axis=1)
     assert pixels[differ].tolist() == []
+
+
+def test_a_red_of_255_passes_with_a_note_on_what_differs(graded, checks_run_by_students):
+    # RGBColor(255, 0, 0) makes Figure 3's PNG through the course's tonemapper: right, with
+    # a note in the feedback, and not a word of it marked wrong
+    name = next(name for name in RIGHT if "RGBColor(255, 0, 0)" in FIXTURES[name].styles)
+    step = next(step for step in graded.records[name]["steps"] if step["step"] == "1.2")
+    intersection = next(check for check in step["checks"] if check["name"] == "intersection")
+    assert intersection["passed"]
+    assert intersection["note"].startswith("your red is 255 where PyRT's is 1.")
+    page = (graded.results / name / course_feedback.FEEDBACK).read_text(encoding="utf-8")
+    assert "Worth knowing: your red is 255" in page
+    assert checks_run_by_students[name]["test_assignment_1_2_intersection_image"] is None
