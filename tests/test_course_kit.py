@@ -29,7 +29,8 @@ import practice1_checks as checks  # noqa: E402  (found through the line above)
 
 HANDOUT_FILES = [
     ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
-    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Images.py", "PyRT_Integrators.py",
+    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Explain.py", "PyRT_ExplainPicture.py",
+    "PyRT_Images.py", "PyRT_Integrators.py",
     "out/.gitkeep", "pytest.ini", "references/figure1_phong.png",
     "references/figure2_lazy.png", "references/figure3_intersection.png",
     "references/figure4_depth.png", "references/figure4_normal.png",
