@@ -24,6 +24,8 @@ import sys
 from dataclasses import dataclass, field
 from typing import List, Optional, Tuple
 
+import cv2
+
 Vec = Tuple[float, float, float]
 
 QUERIES = ("closest_hit", "any_hit")
@@ -294,6 +296,17 @@ def explain_pixel(integrator, x, y) -> PixelHistory:
     return history
 
 
+def opencv_click(integrator):
+    """A mouse callback for OpenCV's window: after
+    cv2.setMouseCallback(window_name, opencv_click(integrator)), a left click on the image
+    that cv2.imshow shows in that window prints the history of the pixel clicked (OpenCV
+    gives the click in the image's own pixels)."""
+    def clicked(event, x, y, flags, param):
+        if event == cv2.EVENT_LBUTTONDOWN:
+            print(explain_pixel(integrator, x, y))
+    return clicked
+
+
 def _whole(value) -> bool:
     """Whether value is a whole number of pixels (an int or numpy integer, not a bool)."""
     return isinstance(value, numbers.Integral) and not isinstance(value, bool)
@@ -428,9 +441,10 @@ def _notes(history):
             notes.append(
                 f"shadow acne: the shadow ray to light {query.light} hits object "
                 f"{query.blocker.index}, the very surface it starts on, at "
-                f"{_n(query.blocker.answer.distance)}: rounding puts the hit point a hair "
-                "below the surface. Start the ray EPSILON along, e.g. Ray(hit_point, wi, "
-                "distance), whose t_min is EPSILON, so that it cannot hit its own start.")
+                f"{_n(query.blocker.answer.distance)}: the hit point lies on the surface, or "
+                "by rounding a hair below it. Start the ray EPSILON along, e.g. "
+                "Ray(hit_point, wi, distance), whose t_min is EPSILON, so that it cannot "
+                "hit its own start.")
     hit = history.camera_hit.hit if history.camera_hit else None
     if hit is not None and hit.normal is not None:
         length = math.sqrt(sum(c * c for c in hit.normal))

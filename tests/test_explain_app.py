@@ -5,8 +5,12 @@ from types import SimpleNamespace
 
 import pytest
 
+import cv2
+
 import AppRenderer
 from helpers import APP, read_png, run_python
+from PyRT_Explain import opencv_click
+from PyRT_Integrators import PhongIntegrator
 
 
 def test_explain_prints_the_story_of_a_pixel_in_the_shadow_and_saves_its_picture(tmp_path):
@@ -78,3 +82,13 @@ def click(x, y, button=1, mode=""):
 ])
 def test_a_click_falls_on_the_pixel_under_it(event, pixel):
     assert AppRenderer.clicked_pixel(event, 50, 10) == pixel
+
+
+def test_a_left_click_on_an_opencv_window_prints_the_pixels_story(capsys):
+    integrator = PhongIntegrator("unused")
+    integrator.add_scene(AppRenderer.sphere_test_scene())
+    callback = opencv_click(integrator)
+    callback(cv2.EVENT_MOUSEMOVE, 0, 0, 0, None)
+    assert capsys.readouterr().out == ""
+    callback(cv2.EVENT_LBUTTONDOWN, 0, 0, 0, None)  # pixel (0, 0) sees the background
+    assert capsys.readouterr().out.startswith("Pixel (0, 0) of PhongIntegrator")
