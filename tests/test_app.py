@@ -699,7 +699,7 @@ class App:
 @pytest.fixture
 def app(tmp_path, monkeypatch):
     app = App(tmp_path / "out")
-    monkeypatch.setattr(AppRenderer, "show", app.shown.append)
+    monkeypatch.setattr(AppRenderer, "show", lambda png, on_click=None: app.shown.append(png))
     return app
 
 

@@ -558,6 +558,25 @@ def test_the_feedback_page_shows_each_step_its_verdict_and_the_images(graded):
     assert "likely mistake: the depth is not clamped at 0" in "".join(page.text)
 
 
+def test_a_wrong_phong_image_tells_its_first_wrong_pixel_beside_the_frameworks_story(graded):
+    # Without shadows, a pixel of the Cornell box is wrong only where the framework finds
+    # a light blocked; inside the box, whose walls face inwards with the lights inside it,
+    # only the sphere (object 0) can block one.
+    _, _, results, records, _, _ = graded
+    record = records["unmapped_normals_and_no_shadows"]
+    [check] = [check for step in record["steps"] for check in step["checks"]
+               if check["name"] == "phong_cornell"]
+    x, y = check["story_pixel"]
+    assert check["story"].startswith(f"Pixel ({x}, {y}) is the first that differs")
+    assert "shadow ray to light" not in check["story"] and "no shadow ray" in check["story"]
+    page = "".join(Page((results / "unmapped_normals_and_no_shadows" / "feedback.html")
+                        .read_text()).text)
+    assert "Your code:" in page and "The finished framework:" in page
+    framework = page[page.index("The finished framework:"):]
+    assert f"Pixel ({x}, {y}) of PhongIntegrator" in framework
+    assert "blocked by object 0 (Sphere)" in framework
+
+
 def test_grading_again_skips_what_is_graded_and_regrades_what_changed(graded, monkeypatch,
                                                                     tmp_path):
     folder, _, shared_results, records, _, config_path = graded

@@ -15,8 +15,9 @@ surface and the background, or light and shadow) meet. A ray there may hit eithe
 so such a pixel may also take any of the colours that the rays around its centre see.
 
 When an image differs, the check says how many pixels differ and where, writes your image,
-the expected one and their difference into out/checks/<check>/, and names the mistake when
-it recognises it.
+the expected one and their difference into out/checks/<check>/, names the mistake when
+it recognises it, and tells the history of the first pixel that differs: every question
+your compute_color asked the scene there, and the answers (PyRT_Explain.py).
 """
 import traceback
 from dataclasses import dataclass, field
@@ -128,7 +129,8 @@ BLACK_HINT = "the image is black: compute_color returns BLACK for every ray"
 class Check:
     """The verdict of one check: passed or not, a one-line reason when not, the message
     for the student, the error and the student's own traceback lines when their code
-    raised, and the PNGs written (render, expected, difference)."""
+    raised, the PNGs written (render, expected, difference), and for a wrong image the
+    story of its first wrong pixel, story_pixel (x, y), as the student's code tells it."""
 
     name: str
     step: str
@@ -138,6 +140,8 @@ class Check:
     message: str = ""
     error: str = ""
     images: dict = field(default_factory=dict)
+    story: str = ""
+    story_pixel: tuple = ()
 
     def fail(self, reason, details=""):
         self.passed, self.reason = False, reason
@@ -159,6 +163,8 @@ class Check:
                          + self.error.rstrip("\n"))
         if self.images:
             parts.append("  images: " + ", ".join(str(path) for path in self.images.values()))
+        if self.story:
+            parts.append(self.story)
         return "\n".join(parts)
 
 
@@ -414,7 +420,26 @@ def _check_image(check, folder):
                   "(Assignment 1.2), but render() fails the check of its rays: "
                   + probe.reason)
     check.images = write_pngs(folder, image, data[check.name], verdict.wrong)
+    if image_info.integrator not in ("LazyIntegrator", "RayProbe"):  # no rays of their own
+        tell_first_wrong_pixel(check, integrator, verdict.wrong, data[check.name])
     return check.fail(reason, verdict.details)
+
+
+def tell_first_wrong_pixel(check, integrator, wrong, expected):
+    """Sets check.story to the history of the first wrong pixel (in reading order) as the
+    student's integrator tells it, with the colour expected there. A story that cannot be
+    told (no PyRT_Explain.py beside the modules, a scene it cannot read) is left out: it
+    never changes the verdict."""
+    y, x = (int(i) for i in np.argwhere(wrong)[0])
+    try:
+        from PyRT_Explain import explain_pixel
+        history = explain_pixel(integrator, x, y)
+    except Exception:
+        return
+    check.story_pixel = (x, y)
+    check.story = (f"Pixel ({x}, {y}) is the first that differs; the expected colour there "
+                   f"is {_rgb(expected[y, x])}. What your code asked and was answered:\n"
+                   f"{history}")
 
 
 # ------------------------------------------------------------------------------------------
