@@ -92,3 +92,19 @@ def test_a_left_click_on_an_opencv_window_prints_the_pixels_story(capsys):
     assert capsys.readouterr().out == ""
     callback(cv2.EVENT_LBUTTONDOWN, 0, 0, 0, None)  # pixel (0, 0) sees the background
     assert capsys.readouterr().out.startswith("Pixel (0, 0) of PhongIntegrator")
+
+
+def test_a_click_on_the_window_of_a_render_prints_that_pixels_story(tmp_path, monkeypatch,
+                                                                    capsys):
+    handlers = []
+    monkeypatch.setattr(AppRenderer, "show", lambda png, on_click=None: handlers.append(
+        on_click))
+    assert AppRenderer.main(["--width", "8", "--height", "8", "--workers", "1",
+                             "--scene", "sphere", "--out", str(tmp_path)]) == 0
+    capsys.readouterr()
+    [on_click] = handlers
+    on_click(0, 0)  # the top left corner looks up, past the sphere, at nothing
+    out = capsys.readouterr().out
+    assert out.startswith("Pixel (0, 0) of PhongIntegrator")
+    assert "camera ray -> closest_hit: no hit" in out
+    assert (tmp_path / "pixel_0_0.png").is_file()
