@@ -180,7 +180,7 @@ def plain_method(obj, name):
     own = getattr(obj, "__dict__", {}).get(name)
     if own is not None and type(getattr(own, "__self__", None)).__module__ != "PyRT_Acceleration":
         return own
-    return getattr(type(obj), name).__get__(obj)
+    return getattr(type(obj), name).__get__(obj)  # an AttributeError when it has none
 
 
 # ------------------------------------------------------------------------------------------
@@ -199,7 +199,8 @@ class _Recorder:
 
     def __enter__(self):
         for name in QUERIES:
-            self._wrap(self.scene, name, self._query(name, plain_method(self.scene, name)))
+            if hasattr(self.scene, name):  # a scene of the course's may lack any_hit yet
+                self._wrap(self.scene, name, self._query(name, plain_method(self.scene, name)))
         wrapped = set()
         for index, obj in enumerate(self.scene.object_list):
             if id(obj) not in wrapped:  # an object listed twice is recorded once
@@ -455,7 +456,8 @@ def _notes(history):
         return  # the story ends with the error
     if history.color is None:
         notes.append(f"the colour {history.color_text} is not an RGBColor: compute_color "
-                     "must return one (a `pass` left in returns None)")
+                     "must return one" + (" (a `pass` left in returns None)"
+                                          if history.color_text == "None" else ""))
     elif any(math.isnan(c) for c in history.color):
         notes.append(f"the colour {history.color_text} has NaN (not a number) in it: "
                      "0/0, or the square root of a negative number, somewhere before")

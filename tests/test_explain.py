@@ -11,6 +11,7 @@ centre (0, 0) at a distance |(-0.5)(1) - (1.5)(0)| / sqrt(0.5^2 + 1.5^2) = 0.316
 than the radius; light 2 likewise, mirrored.
 """
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -215,7 +216,8 @@ class Returns(Integrator):
 
 @pytest.mark.parametrize("color, note", [
     ((0.5, 0.5, 0.5), "the colour (0.5, 0.5, 0.5) is not an RGBColor"),
-    (None, "the colour None is not an RGBColor"),
+    (None, "the colour None is not an RGBColor: compute_color must return one (a `pass` "
+           "left in returns None)"),
     (RGBColor(float("nan"), 0.0, 0.0), "has NaN (not a number) in it"),
 ])
 def test_a_colour_that_is_not_an_rgbcolor_or_has_nan_is_pointed_out(color, note):
@@ -300,3 +302,101 @@ def test_the_picture_is_saved_where_asked(tmp_path):
     # the blocked shadow ray is drawn in red: matplotlib's tab:red is (214, 39, 40)
     red = np.all(np.abs(picture * 255 - (214, 39, 40)) < 2, axis=2)
     assert red.sum() > 50
+
+
+# The course's own base code, as far as explain_pixel meets it: plain classes without
+# PyRT's checks, a Ray whose defaults are numpy arrays (2021-22) and that has no t_min
+# argument, a Normalize that divides by the length.
+COURSE_BASE = '''
+from math import sqrt
+import numpy as np
+EPSILON = 0.0001
+
+class Vector3D:
+    def __init__(self, x, y, z):
+        self.x, self.y, self.z = x, y, z
+    def __add__(self, w):
+        return Vector3D(self.x + w.x, self.y + w.y, self.z + w.z)
+    def __sub__(self, w):
+        return Vector3D(self.x - w.x, self.y - w.y, self.z - w.z)
+    def __mul__(self, s):
+        return Vector3D(self.x * s, self.y * s, self.z * s)
+
+def Dot(a, b):
+    return a.x * b.x + a.y * b.y + a.z * b.z
+
+def Normalize(v):
+    return v * (1.0 / sqrt(Dot(v, v)))
+
+class Ray:
+    made = []
+    def __init__(self, origin=np.array([0, 0, 0]), direction=np.array([0, 0, 0]), tmax=1e6):
+        self.o, self.d, self.t_max, self.t_min = origin, direction, tmax, EPSILON
+        Ray.made.append(self)
+
+class HitData:
+    def __init__(self, has_hit=False, hit_point=None, normal=None, hit_distance=1e6,
+                 primitive_index=-1):
+        self.has_hit, self.hit_point, self.normal = has_hit, hit_point, normal
+        self.hit_distance, self.primitive_index = hit_distance, primitive_index
+
+class Sphere:
+    def __init__(self, origin, radius):
+        self.origin, self.radius = origin, radius
+    def intersect(self, ray):
+        d, oc = Normalize(ray.d), ray.o - self.origin
+        b, c = 2 * Dot(d, oc), Dot(oc, oc) - self.radius ** 2
+        disc = b * b - 4 * c
+        if disc < 0:
+            return HitData()
+        t = (-b - sqrt(disc)) / 2
+        if not ray.t_min <= t <= ray.t_max:
+            return HitData()
+        p = ray.o + d * t
+        return HitData(True, p, Normalize(p - self.origin), t)
+
+class Camera:
+    width = height = 1
+    def get_direction(self, x, y):
+        return Vector3D(0.0, 0.0, -1.0)
+
+class Scene:
+    def __init__(self):
+        self.object_list, self.pointLights, self.camera = [], [], Camera()
+    def closest_hit(self, ray):
+        closest = HitData()
+        for index, obj in enumerate(self.object_list):
+            hit = obj.intersect(ray)
+            if hit.has_hit and hit.hit_distance < closest.hit_distance:
+                closest, closest.primitive_index = hit, index
+        return closest
+'''
+
+
+class CourseDepth:
+    """A student's integrator on the course's base code: no explain_pixel of its own, and
+    a compute_color that returns the distance itself instead of an RGBColor."""
+
+    def __init__(self, scene):
+        self.scene = scene
+
+    def compute_color(self, ray):
+        return self.scene.closest_hit(ray).hit_distance
+
+
+def test_an_integrator_on_the_course_base_code_is_explained_with_the_courses_ray(monkeypatch):
+    # The camera ray (0, 0, -1) meets the unit sphere around (0, 0, -5) at distance 4,
+    # at (0, 0, -4), where the outward normal is (0, 0, 1).
+    module = type(sys)("course_base_core")
+    exec(COURSE_BASE, module.__dict__)
+    monkeypatch.setitem(sys.modules, "course_base_core", module)
+    scene = module.Scene()
+    scene.object_list.append(module.Sphere(module.Vector3D(0.0, 0.0, -5.0), 1.0))
+    history = explain_pixel(CourseDepth(scene), 0, 0)
+    assert len(module.Ray.made) == 1  # the camera ray is the course's Ray
+    assert history.camera_ray.t_min == 0.0001
+    hit = history.camera_hit.hit
+    assert (hit.index, hit.distance, hit.point, hit.normal) == (
+        0, 4.0, (0.0, 0.0, -4.0), (0.0, 0.0, 1.0))
+    assert history.notes == ["the colour 4.0 is not an RGBColor: compute_color must return "
+                             "one"]
