@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 from typing import List, Optional, Tuple
 
 import cv2
+import numpy as np
 
 Vec = Tuple[float, float, float]
 
@@ -127,6 +128,7 @@ class PixelHistory:
                 yield from event.walk()
 
     def shadow_rays(self):
+        """The queries whose ray goes from the camera ray's hit towards a light."""
         return [query for query in self.queries() if query.role == "shadow ray"]
 
     def __str__(self):
@@ -198,14 +200,19 @@ class _Recorder:
         self.undo = []     # (object, attribute name, whether it had its own, its own)
 
     def __enter__(self):
-        for name in QUERIES:
-            if hasattr(self.scene, name):  # a scene of the course's may lack any_hit yet
-                self._wrap(self.scene, name, self._query(name, plain_method(self.scene, name)))
-        wrapped = set()
-        for index, obj in enumerate(self.scene.object_list):
-            if id(obj) not in wrapped:  # an object listed twice is recorded once
-                wrapped.add(id(obj))
-                self._wrap(obj, "intersect", self._intersect(index, obj, obj.intersect))
+        try:
+            for name in QUERIES:
+                if hasattr(self.scene, name):  # a scene of the course's may lack any_hit
+                    self._wrap(self.scene, name,
+                               self._query(name, plain_method(self.scene, name)))
+            wrapped = set()
+            for index, obj in enumerate(self.scene.object_list):
+                if id(obj) not in wrapped:  # an object listed twice is recorded once
+                    wrapped.add(id(obj))
+                    self._wrap(obj, "intersect", self._intersect(index, obj, obj.intersect))
+        except BaseException:  # e.g. an object without intersect: leave nothing wrapped
+            self.__exit__()
+            raise
         return self
 
     def __exit__(self, *exc_info):
@@ -238,7 +245,7 @@ class _Recorder:
             if method == "closest_hit":
                 event.hit = hit_record(answer)
             else:
-                event.answer = answer if isinstance(answer, bool) else repr(answer)
+                event.answer = _truth(answer)
             return answer
         return recorded
 
@@ -252,6 +259,14 @@ class _Recorder:
             (self.open[-1].intersects if self.open else self.events).append(event)
             return answer
         return recorded
+
+
+def _truth(answer):
+    """any_hit's answer: True or False when it is one (numpy's booleans too), else its
+    repr, which the story shows as it is."""
+    if isinstance(answer, (bool, np.bool_)):
+        return bool(answer)
+    return repr(answer)
 
 
 def course_class(scene, name):
@@ -390,7 +405,7 @@ def _shadow(query, light, distance, anchor, point):
     query.role, query.light = "shadow ray", light
     query.blocker = hit_object(query)
     if query.method == "any_hit":
-        query.blocked = bool(query.answer)
+        query.blocked = query.answer is True
     else:
         query.blocked = query.hit.has_hit and (query.hit.distance or 0.0) < distance
     own = hit_object(anchor)

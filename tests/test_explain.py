@@ -158,6 +158,16 @@ def test_the_same_shadow_ray_starting_epsilon_along_sees_its_light():
     assert history.notes == [] and "visible" in str(history)
 
 
+def test_an_any_hit_of_numpys_false_assigned_to_the_scene_leaves_the_light_visible():
+    integrator = ShadowRayFrom(EPSILON)
+    scene = wall_scene()
+    scene.any_hit = lambda ray: np.bool_(Scene.any_hit(scene, ray))  # the student's own
+    integrator.add_scene(scene)
+    [shadow] = explain_pixel(integrator, 0, 0).shadow_rays()
+    assert (shadow.answer, shadow.blocked) == (False, False)
+    assert len(shadow.intersects) == 1  # the wall, asked by the student's any_hit
+
+
 class AnyHitByClosestHit(Scene):
     """A student's Scene whose any_hit asks its closest_hit."""
 
