@@ -116,6 +116,7 @@ class PixelHistory:
     events: list = field(default_factory=list)  # QueryEvents and IntersectEvents
     color: Optional[Vec] = None
     color_text: str = ""
+    image_color: Optional[Vec] = None  # the pixel in scene.rendered_image, once rendered
     error: str = ""
     camera_hit: Optional[QueryEvent] = None
     unlit: List[Tuple[int, Optional[float]]] = field(default_factory=list)
@@ -308,6 +309,9 @@ def explain_pixel(integrator, x, y) -> PixelHistory:
     if not history.error:
         history.color_text = repr(color)
         history.color = _color_channels(color)
+    image = getattr(scene, "rendered_image", None)
+    if isinstance(image, np.ndarray) and image.shape[:2] == (height, width) and image.any():
+        history.image_color = tuple(float(c) for c in image[y, x][:3])
     interpret(history, scene, Vector3D)
     return history
 
@@ -476,6 +480,12 @@ def _notes(history):
     elif any(math.isnan(c) for c in history.color):
         notes.append(f"the colour {history.color_text} has NaN (not a number) in it: "
                      "0/0, or the square root of a negative number, somewhere before")
+    elif history.image_color is not None and not all(
+            math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12)
+            for a, b in zip(history.color, history.image_color)):
+        notes.append(f"the rendered image holds {_v(history.image_color)} at this pixel, not "
+                     "this colour: render() gave the pixel another one (a colour of its own, "
+                     "x and y swapped in set_pixel, or several rays per pixel averaged)")
 
 
 # ------------------------------------------------------------------------------------------

@@ -18,7 +18,7 @@ import pytest
 
 import PyRT_Acceleration
 from AppRenderer import cornell_box_scene, sphere_test_scene
-from helpers import StudentPhongIntegrator, fov90_scene, read_png
+from helpers import StudentPhongIntegrator, fov90_scene, read_png, render_image
 from PyRT_Core import *
 from PyRT_Explain import explain_pixel, vector
 from PyRT_ExplainPicture import save_picture
@@ -282,6 +282,27 @@ def test_explain_runs_on_the_plain_queries_while_a_render_has_swapped_them():
         assert vars(integrator.scene)["closest_hit"] is fast  # put back as it was
     assert len(during.camera_hit.intersects) == 6  # every object asked, as the course's loop
     assert str(during) == plain
+
+
+def test_the_colour_told_is_the_colour_that_render_gave_each_pixel(tmp_path):
+    integrator = PhongIntegrator(str(tmp_path / "image"))
+    scene = cornell_box_scene(0.75, 2, width=12, height=12)
+    image = render_image(integrator, scene, workers=1)
+    for y in range(12):
+        for x in range(12):
+            history = explain_pixel(integrator, x, y)
+            assert history.image_color == tuple(image[y, x])
+            assert history.color == pytest.approx(history.image_color, rel=1e-12)
+            assert history.notes == []
+
+
+def test_a_pixel_that_render_coloured_otherwise_is_pointed_out():
+    integrator = Returns(RGBColor(0.25, 0.5, 0.75))
+    integrator.add_scene(wall_scene())
+    integrator.scene.rendered_image[0, 0] = (0.75, 0.5, 0.25)  # as set_pixel would put it
+    [note] = explain_pixel(integrator, 0, 0).notes
+    assert note.startswith("the rendered image holds (0.75, 0.5, 0.25) at this pixel, not "
+                           "this colour")
 
 
 @pytest.mark.parametrize("pixel", [(500, 0), (0, 500), (-1, 0), (2.5, 3)])
