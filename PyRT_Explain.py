@@ -4,12 +4,13 @@
 from the camera through the centre of pixel (x, y), and records what it asks the scene:
 every ``closest_hit`` and ``any_hit`` with its ray and its answer, and inside each the
 answer of every object's ``intersect``; then the colour returned. Printed, the result
-reads like this:
+reads like this (pixel (250, 453) of Figure 1, on the floor below the sphere):
 
     camera ray -> closest_hit: object 2 (Parallelogram) at distance 2.02, normal (0, 1, 0)
     shadow ray to light 0 -> any_hit True: blocked by object 0 (Sphere) at 0.75
     shadow ray to light 1 -> any_hit False: visible, adds (0.0482, 0.0482, 0.0482) ...
-    -> colour (0.27, 0.27, 0.0863)
+    shadow ray to light 2 -> any_hit False: visible, adds (0.0484, 0.0484, 0.0484) ...
+    -> colour (0.351, 0.351, 0.173)
 
 It works on any integrator with a ``scene`` and a ``compute_color``, yours included, and
 on whatever your compute_color, any_hit, closest_hit and primitives do: while it runs,

@@ -36,8 +36,8 @@ def save_picture(history: PixelHistory, scene, path) -> Path:
                     f"colour ({color})")
     shapes = _shapes(scene)
     lights = [vector(getattr(light, "pos", None)) for light in getattr(scene, "pointLights", ())]
-    for number_, (name, axes_of, xlabel, ylabel) in enumerate(VIEWS):
-        ax = figure.add_subplot(1, 2, number_ + 1)
+    for column, (name, axes_of, xlabel, ylabel) in enumerate(VIEWS):
+        ax = figure.add_subplot(1, 2, column + 1)
         _draw_view(ax, history, shapes, lights, axes_of)
         ax.set_title(name)
         ax.set_xlabel(xlabel)
