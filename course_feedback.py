@@ -127,6 +127,7 @@ def gradescope_results(record):
     for step in record["steps"]:
         lines = [step_note(step)] if step_note(step) else []
         lines += [check["message"] + (f"\n{check['error']}" if check["error"] else "")
+                  + (f"\n{check['story']}" if check.get("story") else "")
                   for check in step["checks"]]
         tests.append({"name": step["title"], "score": step["points"],
                       "max_score": step["max_points"], "status": _verdict(step["passed"]),

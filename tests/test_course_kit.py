@@ -575,6 +575,9 @@ def test_a_wrong_phong_image_tells_its_first_wrong_pixel_beside_the_frameworks_s
     framework = page[page.index("The finished framework:"):]
     assert f"Pixel ({x}, {y}) of PhongIntegrator" in framework
     assert "blocked by object 0 (Sphere)" in framework
+    result = json.loads((results / "unmapped_normals_and_no_shadows" / course_feedback.GRADESCOPE)
+                        .read_text())
+    assert check["story"] in result["tests"][3]["output"]  # the step of Phong, 1.4
 
 
 def test_grading_again_skips_what_is_graded_and_regrades_what_changed(graded, monkeypatch,
