@@ -13,6 +13,8 @@ from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
 from PyRT_Compare import REFERENCE_SIZE, compare_figures, write_sheet
+from PyRT_Explain import explain_pixel
+from PyRT_ExplainPicture import save_picture
 # FRAMEWORK ONLY BEGIN
 from PyRT_Sampling import ADAPTIVE_TOLERANCE
 # FRAMEWORK ONLY END
@@ -198,11 +200,34 @@ WINDOW_FRAME = (40, 160)
 MIN_WINDOW_WIDTH = 320
 
 
-def show(png):
+def explain(integrator, x, y, folder):
+    """Prints the story of pixel (x, y) of the integrator's image (see PyRT_Explain.py) and
+    saves the picture of its rays as folder/pixel_X_Y.png."""
+    history = explain_pixel(integrator, x, y)
+    print(history)
+    picture = save_picture(history, integrator.scene, Path(folder) / f"pixel_{x}_{y}.png")
+    print(f"Saved {picture}: the rays of pixel ({x}, {y}), from the side and from above")
+
+
+def clicked_pixel(event, width, height):
+    """The pixel (x, y) of an image of width x height pixels that a click on the window
+    (a matplotlib button_press_event) falls on; None for a click outside the image, with
+    another button than the left one, or while the zoom or pan tool of the toolbar is on.
+    The image is drawn with the centre of pixel (x, y) at the point (x, y)."""
+    toolbar = getattr(event.canvas, "toolbar", None)
+    if event.button != 1 or event.xdata is None or getattr(toolbar, "mode", ""):
+        return None
+    x, y = int(floor(event.xdata + 0.5)), int(floor(event.ydata + 0.5))
+    return (x, y) if 0 <= x < width and 0 <= y < height else None
+
+
+def show(png, on_click=None):
     """Shows the saved image in a window titled with its file name, pixel for pixel: one
     screen pixel for each pixel of the image, nothing smoothed, so that stair steps and
     edges look as they are. An image too large for the screen is scaled down to fit, and a
-    message says so. Without a screen it only says that the image is saved."""
+    message says so. Without a screen it only says that the image is saved.
+
+    on_click(x, y), when given, is called with the pixel that a left click falls on."""
     if not _has_display():
         print("No display: the image is saved, not shown.")
         return
@@ -225,6 +250,14 @@ def show(png):
     axes.imshow(pixels, interpolation="none" if scale == 1.0 else "antialiased")
     _keep_size_in_pixels(figure, (max(MIN_WINDOW_WIDTH, round(width * scale)),
                                   max(1, round(height * scale))))
+    if on_click is not None:
+        def clicked(event):
+            pixel = clicked_pixel(event, width, height)
+            if pixel is not None:
+                on_click(*pixel)
+
+        figure.canvas.mpl_connect("button_press_event", clicked)
+        print("Click a pixel of the window to print why it has its colour.")
     plt.show()
 
 
@@ -283,6 +316,16 @@ def fraction_arg(text):
     return value
 
 
+def pixel_arg(text):
+    """An argparse type: a pixel given as X,Y, two whole numbers from 0 (x to the right,
+    y down)."""
+    parts = text.split(",")
+    if len(parts) != 2 or not all(part.strip().isdigit() for part in parts):
+        raise argparse.ArgumentTypeError(f"must be a pixel X,Y such as 250,400 (two whole "
+                                         f"numbers from 0), got {text!r}")
+    return int(parts[0]), int(parts[1])
+
+
 def positive_arg(kind):
     """An argparse type: a number of the given kind (int or float) greater than 0."""
     def convert(text):
@@ -337,12 +380,26 @@ def parse_args(argv):
     # FRAMEWORK ONLY END
     parser.add_argument("--no-window", action="store_true",
                         help="save the image without showing it")
+    parser.add_argument("--explain", type=pixel_arg, default=None, metavar="X,Y",
+                        help="print why pixel (X, Y) of the image has its colour (every "
+                             "question compute_color asks the scene, and its answer) and "
+                             "save a picture of its rays as out/pixel_X_Y.png; clicking a "
+                             "pixel of the window does the same")
     parser.add_argument("--all-figures", action="store_true",
                         help="render the six images of the course's Figures 1-5 as "
                              "out/rendered_image_<Integrator>_figure<N>.png, compare them "
                              "with the course's and show them side by side in "
                              f"out/{SHEET_FILENAME}")
     args = parser.parse_args(argv)
+    if args.explain is not None:
+        x, y = args.explain
+        if args.all_figures:
+            parser.error("argument --explain: explains a pixel of one image; leave out "
+                         "--all-figures")
+        if not (x < args.width and y < args.height):
+            parser.error(f"argument --explain: pixel ({x}, {y}) is not in the {args.width} "
+                         f"x {args.height} image: x goes from 0 to {args.width - 1}, y from "
+                         f"0 to {args.height - 1}")
     # FRAMEWORK ONLY BEGIN
     if args.adaptive and args.spp == 1:
         parser.error("argument --adaptive: needs --spp N with N of 2 or more, the rays the "
@@ -386,8 +443,12 @@ def main(argv=None):
         sheet = compare_with_course(renders, args.out, (args.width, args.height),
                                     options.get("samples_per_pixel", 1))
         shown = sheet or shown
+    integrator = jobs[-1][0]
+    if args.explain is not None:
+        explain(integrator, *args.explain, args.out)
     if not args.no_window:
-        show(shown)
+        show(shown, None if args.all_figures else
+             lambda x, y: explain(integrator, x, y, args.out))
     return 0
 
 

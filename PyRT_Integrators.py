@@ -10,6 +10,7 @@ pixel, the progress bar, checks) lives in PyRT_Rendering.py and the modules it u
 """
 from PyRT_Common import *
 from PyRT_Common import __all__ as _common_names, _restore_state, is_number
+import PyRT_Explain
 # FRAMEWORK ONLY BEGIN
 from PyRT_Rendering import check_render, rendered_blocks
 from PyRT_Sampling import ADAPTIVE_TOLERANCE, not_a_color, sampled_row
@@ -50,6 +51,12 @@ class Integrator(ABC):
     @abstractmethod
     def compute_color(self, ray):
         """The RGBColor arriving along ray."""
+
+    def explain_pixel(self, x, y):
+        """Why pixel (x, y) has its colour: compute_color run again on the pixel's camera
+        ray, with every closest_hit, any_hit and intersect it asks recorded. print() the
+        result to read it as a story (see PyRT_Explain.py)."""
+        return PyRT_Explain.explain_pixel(self, x, y)
 
     # FRAMEWORK ONLY BEGIN
     @property

@@ -106,7 +106,21 @@ def _check_html(check):
     for kind, path in check["images"].items():
         parts.append(f"<figure><img src=\"{e(path)}\" alt=\"{e(IMAGE_LABELS[kind])}\">"
                      f"<figcaption>{e(IMAGE_LABELS[kind])}</figcaption></figure>")
+    if check.get("story"):
+        parts.append(_stories_html(check))
     return "\n".join(parts)
+
+
+def _stories_html(check):
+    """The history of the first wrong pixel as the student's code tells it, beside the
+    finished framework's history of the same pixel (course_references.framework_story)."""
+    import course_references  # loads the framework: only pages with a story need it
+    e = html.escape
+    theirs = course_references.framework_story(check["name"], *check["story_pixel"])
+    columns = [("Your code", check["story"]), ("The finished framework", theirs)]
+    return ("<div style=\"display: flex; gap: 1em\">" + "".join(
+        f"<div style=\"flex: 1; min-width: 0\"><p>{e(who)}:</p><pre>{e(story)}</pre></div>"
+        for who, story in columns) + "</div>")
 
 
 def gradescope_results(record):
@@ -116,6 +130,7 @@ def gradescope_results(record):
     for step in record["steps"]:
         lines = [step_note(step)] if step_note(step) else []
         lines += [check["message"] + (f"\n{check['error']}" if check["error"] else "")
+                  + (f"\n{check['story']}" if check.get("story") else "")
                   for check in step["checks"]]
         tests.append({"name": step["title"], "score": step["points"],
                       "max_score": step["max_points"], "status": _verdict(step["passed"]),

@@ -133,7 +133,8 @@ def step_process(workdir, step, result_path, log_path, limits):
     json.dump({"checks": [{"name": check.name, "title": check.title,
                            "passed": check.passed, "reason": check.reason,
                            "note": check.note, "message": check.message, "error": check.error,
-                           "images": {kind: str(path) for kind, path in check.images.items()}}
+                           "images": {kind: str(path) for kind, path in check.images.items()},
+                           "story": check.story, "story_pixel": list(check.story_pixel)}
                           for check in checks],
                "refused": refused}, result)
     result.close()

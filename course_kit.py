@@ -35,8 +35,8 @@ EXPECTED = CHECKS / "expected" / "practice1.npz"
 # What students write in, made from the framework by replacing the marked blocks
 COURSE_MODULES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppRenderer.py")
 # What AppRenderer.py needs besides them, shipped as it is
-SHIPPED_AS_IS = ("PyRT_Images.py", "PyRT_Compare.py", ".vscode/launch.json",
-                 ".vscode/settings.json")
+SHIPPED_AS_IS = ("PyRT_Images.py", "PyRT_Compare.py", "PyRT_Explain.py",
+                 "PyRT_ExplainPicture.py", ".vscode/launch.json", ".vscode/settings.json")
 # The course's figures, which PyRT_Compare.py finds in references/
 FIGURES = ("figure1_phong.png", "figure2_lazy.png", "figure3_intersection.png",
            "figure4_depth.png", "figure4_normal.png", "figure5_phong.png")

@@ -240,6 +240,14 @@ def npz_bytes(arrays):
     return buffer.getvalue()
 
 
+def framework_story(name, x, y):
+    """The finished framework's history of pixel (x, y) of IMAGES[name] (PyRT_Explain.py),
+    as text: what the feedback page shows beside a student's story of the same pixel."""
+    integrator = checks.make_integrator(name, "unused", PyRT_Integrators)
+    integrator.add_scene(checks.SCENES[checks.IMAGES[name].scene]())
+    return str(integrator.explain_pixel(x, y))
+
+
 def write_expected(path):
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

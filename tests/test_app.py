@@ -382,7 +382,7 @@ def test_no_options_mean_the_defaults_of_the_readme(command_line):
         "max_depth": None,  # the depth integrator's own, 10
         "out": AppRenderer.DIRECTORY, "workers": None, "spp": 1, "adaptive": False,
         "tolerance": None,  # ADAPTIVE_TOLERANCE, applied by main
-        "no_window": False, "all_figures": False}
+        "no_window": False, "explain": None, "all_figures": False}
     assert Path(AppRenderer.DIRECTORY) == REPO / "out"
 
 
@@ -699,7 +699,7 @@ class App:
 @pytest.fixture
 def app(tmp_path, monkeypatch):
     app = App(tmp_path / "out")
-    monkeypatch.setattr(AppRenderer, "show", app.shown.append)
+    monkeypatch.setattr(AppRenderer, "show", lambda png, on_click=None: app.shown.append(png))
     return app
 
 

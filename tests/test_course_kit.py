@@ -29,7 +29,8 @@ import practice1_checks as checks  # noqa: E402  (found through the line above)
 
 HANDOUT_FILES = [
     ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
-    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Images.py", "PyRT_Integrators.py",
+    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Explain.py", "PyRT_ExplainPicture.py",
+    "PyRT_Images.py", "PyRT_Integrators.py",
     "out/.gitkeep", "pytest.ini", "references/figure1_phong.png",
     "references/figure2_lazy.png", "references/figure3_intersection.png",
     "references/figure4_depth.png", "references/figure4_normal.png",
@@ -621,6 +622,28 @@ def test_the_feedback_page_shows_each_step_its_verdict_and_the_images(graded):
         image = plt.imread(results / "unclamped_depth_and_no_ambient" / source)
         assert image.shape[:2] == (checks.SIZE * checks.PNG_SCALE,) * 2
     assert "likely mistake: the depth is not clamped at 0" in "".join(page.text)
+
+
+def test_a_wrong_phong_image_tells_its_first_wrong_pixel_beside_the_frameworks_story(graded):
+    # Without shadows, a pixel of the Cornell box is wrong only where the framework finds
+    # a light blocked; inside the box, whose walls face inwards with the lights inside it,
+    # only the sphere (object 0) can block one.
+    _, _, results, records, _, _ = graded
+    record = records["unmapped_normals_and_no_shadows"]
+    [check] = [check for step in record["steps"] for check in step["checks"]
+               if check["name"] == "phong_cornell"]
+    x, y = check["story_pixel"]
+    assert check["story"].startswith(f"Pixel ({x}, {y}) is the first that differs")
+    assert "shadow ray to light" not in check["story"] and "no shadow ray" in check["story"]
+    page = "".join(Page((results / "unmapped_normals_and_no_shadows" / "feedback.html")
+                        .read_text()).text)
+    assert "Your code:" in page and "The finished framework:" in page
+    framework = page[page.index("The finished framework:"):]
+    assert f"Pixel ({x}, {y}) of PhongIntegrator" in framework
+    assert "blocked by object 0 (Sphere)" in framework
+    result = json.loads((results / "unmapped_normals_and_no_shadows" / course_feedback.GRADESCOPE)
+                        .read_text())
+    assert check["story"] in result["tests"][3]["output"]  # the step of Phong, 1.4
 
 
 def test_grading_again_skips_what_is_graded_and_regrades_what_changed(graded, monkeypatch,

@@ -24,8 +24,9 @@ scale and shift (a red of RGBColor(255, 0, 0) instead of RGBColor(1, 0, 0)) make
 figure's PNG and is right; the check then adds a note saying what differs.
 
 When an image differs, the check says how many pixels differ and where, writes your image,
-the expected one and their difference into out/checks/<check>/, and names the mistake when
-it recognises it.
+the expected one and their difference into out/checks/<check>/, names the mistake when
+it recognises it, and tells the history of the first pixel that differs: every question
+your compute_color asked the scene there, and the answers (PyRT_Explain.py).
 """
 import traceback
 from dataclasses import dataclass, field
@@ -137,8 +138,9 @@ BLACK_HINT = "the image is black: compute_color returns BLACK for every ray"
 class Check:
     """The verdict of one check: passed or not, a one-line reason when not, a note when
     it passed with something worth knowing, the message for the student, the error and
-    the student's own traceback lines when their code raised, and the PNGs written
-    (render, expected, difference)."""
+    the student's own traceback lines when their code raised, the PNGs written (render,
+    expected, difference), and for a wrong image the story of its first wrong pixel,
+    story_pixel (x, y), as the student's code tells it."""
 
     name: str
     step: str
@@ -149,6 +151,8 @@ class Check:
     message: str = ""
     error: str = ""
     images: dict = field(default_factory=dict)
+    story: str = ""
+    story_pixel: tuple = ()
 
     def fail(self, reason, details=""):
         self.passed, self.reason = False, reason
@@ -170,6 +174,8 @@ class Check:
                          + self.error.rstrip("\n"))
         if self.images:
             parts.append("  images: " + ", ".join(str(path) for path in self.images.values()))
+        if self.story:
+            parts.append(self.story)
         return "\n".join(parts)
 
 
@@ -435,7 +441,26 @@ def _check_image(check, folder):
                   "(Assignment 1.2), but render() fails the check of its rays: "
                   + probe.reason)
     check.images = write_pngs(folder, image, data[check.name], verdict.wrong)
+    if image_info.integrator not in ("LazyIntegrator", "RayProbe"):  # no rays of their own
+        tell_first_wrong_pixel(check, integrator, verdict.wrong, data[check.name])
     return check.fail(reason, verdict.details)
+
+
+def tell_first_wrong_pixel(check, integrator, wrong, expected):
+    """Sets check.story to the history of the first wrong pixel (in reading order) as the
+    student's integrator tells it, with the colour expected there. A story that cannot be
+    told (no PyRT_Explain.py beside the modules, a scene it cannot read) is left out: it
+    never changes the verdict."""
+    y, x = (int(i) for i in np.argwhere(wrong)[0])
+    try:
+        from PyRT_Explain import explain_pixel
+        history = explain_pixel(integrator, x, y)
+    except Exception:
+        return
+    check.story_pixel = (x, y)
+    check.story = (f"Pixel ({x}, {y}) is the first that differs; the expected colour there "
+                   f"is {_rgb(expected[y, x])}. What your code asked and was answered:\n"
+                   f"{history}")
 
 
 # ------------------------------------------------------------------------------------------
