@@ -31,7 +31,7 @@ sys.path.insert(0, str(REPO / "kit" / "checks"))
 import practice1_checks as checks  # noqa: E402  (found through the line above)
 import PyRT_Integrators  # noqa: E402
 from course_arithmetic import with_course_arithmetic  # noqa: E402
-from PyRT_Common import BLACK, EPSILON, Length, Ray, RGBColor, Vector3D  # noqa: E402
+from PyRT_Common import BLACK, EPSILON, Length, Ray, RGBColor  # noqa: E402
 
 # The rays of a seam pixel's alternatives: its centre moved by SEAM_WIDTH of a pixel
 SEAM_OFFSETS = [(checks.SEAM_WIDTH, 0.0), (-checks.SEAM_WIDTH, 0.0),
@@ -146,21 +146,6 @@ def framework_image(name, folder):
     return np.array(scene.rendered_image, dtype=float)
 
 
-def traced_image(integrator, scene, offset=(0.0, 0.0)):
-    """The image of compute_color for a ray from the camera through each pixel's centre
-    moved by offset = (dx, dy) pixels, traced one pixel at a time."""
-    integrator.add_scene(scene)
-    camera = scene.camera
-    image = np.zeros((camera.height, camera.width, 3))
-    dx, dy = offset
-    for y in range(camera.height):
-        for x in range(camera.width):
-            direction = camera.get_direction(x + dx, y + dy)
-            color = integrator.compute_color(Ray(Vector3D(0.0, 0.0, 0.0), direction))
-            image[y, x] = (color.r, color.g, color.b)
-    return image
-
-
 def course_shadow_rays(scene):
     """scene, whose any_hit now ignores the first EPSILON of every ray, as the course's Ray
     does by default (its t_min): what a shadow ray Ray(hit point, wi, r) sees."""
@@ -192,10 +177,11 @@ def seams(name, expected, folder):
         return checks.SCENES[info.scene]()
 
     integrator = checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
-    alternatives = [traced_image(integrator, scene(), offset) for offset in SEAM_OFFSETS]
+    alternatives = [checks.traced_image(integrator, scene(), offset)
+                    for offset in SEAM_OFFSETS]
     if info.integrator == "PhongIntegrator":
-        alternatives.append(traced_image(integrator, course_shadow_rays(scene())))
-    alternatives += [traced_image(student, with_course_arithmetic(scene()))
+        alternatives.append(checks.traced_image(integrator, course_shadow_rays(scene())))
+    alternatives += [checks.traced_image(student, with_course_arithmetic(scene()))
                      for student in students_integrators(name, folder)]
     stack = np.stack(alternatives)  # (K, height, width, 3)
     differs = np.zeros(expected.shape[:2], bool)
@@ -217,10 +203,10 @@ def expected_arrays():
                 continue
             integrator = checks.make_integrator(name, str(Path(folder) / name),
                                                 PyRT_Integrators)
-            arrays[f"{name}.mistake.corner_rays"] = traced_image(
+            arrays[f"{name}.mistake.corner_rays"] = checks.traced_image(
                 integrator, checks.SCENES[info.scene](), CORNER)
             for mistake in checks.RENDERED_MISTAKES.get(name, ()):
-                arrays[f"{name}.mistake.{mistake}"] = traced_image(
+                arrays[f"{name}.mistake.{mistake}"] = checks.traced_image(
                     mistake_integrator(mistake, str(Path(folder) / mistake)),
                     checks.SCENES[info.scene]())
     return arrays

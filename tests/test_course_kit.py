@@ -23,6 +23,7 @@ import course_kit
 import course_references
 import course_kit_students as students
 from helpers import REPO, run_python
+from PyRT_Common import Vector3D
 
 sys.path.insert(0, str(course_kit.CHECKS))
 import practice1_checks as checks  # noqa: E402  (found through the line above)
@@ -281,7 +282,7 @@ def test_the_checks_scenes_are_apprenderers():
                                                       AppRenderer.cornell_box_scene(
                                                           0.75, 2, width=checks.SIZE,
                                                           height=checks.SIZE))):
-        images = [course_references.traced_image(PhongIntegrator("unused"), scene)
+        images = [checks.traced_image(PhongIntegrator("unused"), scene)
                   for scene in (ours, theirs)]
         assert np.array_equal(*images)
         assert [type(obj) for obj in ours.object_list] == [type(obj)
@@ -387,7 +388,7 @@ def test_the_seams_of_the_cornell_box_take_the_background_the_courses_arithmetic
 def test_the_ray_probe_reads_the_numpy_arrays_of_the_2021_22_ray():
     assert checks.components(np.array([0, 0, 0])) == (0.0, 0.0, 0.0)
     assert checks.components(np.array([0.25, -1.0, 2.0])) == (0.25, -1.0, 2.0)
-    assert checks.components(course_references.Vector3D(1, 2, 3)) == (1.0, 2.0, 3.0)
+    assert checks.components(Vector3D(1, 2, 3)) == (1.0, 2.0, 3.0)
 
 
 def test_a_passed_check_with_a_note_shows_it_without_marking_anything_wrong():
@@ -430,9 +431,10 @@ VERDICTS = {
     "right": {},
     "right_other_style": {},
     "right_zipped": {},
-    "upside_down": dict.fromkeys(("1.1", "1.2", "1.3", "1.4"), "upside down"),
-    "transposed": dict.fromkeys(("1.1", "1.2", "1.3", "1.4"), "transposed"),
-    "corner_rays": dict.fromkeys(("1.1", "1.2", "1.3", "1.4"), "top-left corners"),
+    # a mistake of render() costs its own steps: in 1.3 and 1.4 compute_color counts
+    "upside_down": dict.fromkeys(("1.1", "1.2"), "upside down"),
+    "transposed": dict.fromkeys(("1.1", "1.2"), "transposed"),
+    "corner_rays": dict.fromkeys(("1.1", "1.2"), "top-left corners"),
     "any_hit_first_object_only": {"1.2": "any_hit is wrong for 1 of 6 rays"},
     "unclamped_depth_and_no_ambient": {"1.3": "not clamped at 0",
                                        "1.4": "the ambient term, kd (x) i_a, is missing"},

@@ -161,3 +161,19 @@ def test_a_red_of_255_passes_with_a_note_on_what_differs(graded, checks_run_by_s
     page = (graded.results / name / course_feedback.FEEDBACK).read_text(encoding="utf-8")
     assert "Worth knowing: your red is 255" in page
     assert checks_run_by_students[name]["test_assignment_1_2_intersection_image"] is None
+
+
+@pytest.mark.parametrize("name, mistake", [("upside_down_2021", "upside down"),
+                                           ("transposed_2023", "transposed"),
+                                           ("corner_rays_2025", "top-left corners")])
+def test_a_mistake_of_render_costs_its_steps_and_is_named_in_the_others(graded, name,
+                                                                       mistake):
+    # The images of 1.3 and 1.4 come out of the same render(): they pass on the strength
+    # of compute_color, and say what render() still does wrong
+    for step in graded.records[name]["steps"]:
+        if step["step"] in ("1.3", "1.4"):
+            for check in step["checks"]:
+                assert check["passed"], (step["step"], check["name"])
+                assert check["note"].startswith("compute_color is right: the image that "
+                                                "your render() makes differs"), check["note"]
+                assert mistake in check["note"]

@@ -343,6 +343,35 @@ def make_integrator(name, filename, integrators):
     return getattr(integrators, image.integrator)(filename, *image.arguments)
 
 
+def traced_image(integrator, scene, offset=(0.0, 0.0)):
+    """The image of integrator.compute_color for a ray from the camera through each
+    pixel's centre moved by offset = (dx, dy) pixels, traced here, one pixel at a time,
+    instead of by the integrator's render()."""
+    common = course_modules()[0]
+    integrator.add_scene(scene)
+    camera = scene.camera
+    image = np.zeros((camera.height, camera.width, 3))
+    dx, dy = offset
+    for y in range(camera.height):
+        for x in range(camera.width):
+            direction = camera.get_direction(x + dx, y + dy)
+            color = integrator.compute_color(common.Ray(common.Vector3D(0.0, 0.0, 0.0),
+                                                        direction))
+            image[y, x] = (color.r, color.g, color.b)
+    return image
+
+
+def judge_compute_color(integrator, name, data):
+    """The Verdict on the image of IMAGES[name] traced by traced_image with the student's
+    compute_color on a fresh scene; None when that cannot be traced (compute_color
+    raises or returns something else than a colour)."""
+    try:
+        image = traced_image(integrator, SCENES[IMAGES[name].scene]())
+    except Exception:  # the student's render() was judged; this only looks further
+        return None
+    return judge(image, name, data)
+
+
 def render(integrator, scene):
     """Renders scene with the integrator's own render() and returns a copy of the linear
     image."""
@@ -429,6 +458,15 @@ def _check_image(check, folder):
     if verdict.right:
         return check.succeed(verdict.note)
     reason = verdict.reason
+    if image_info.integrator not in ("LazyIntegrator", "RayProbe"):
+        # A mistake of render() shows in every image it makes, but the check of its rays
+        # (Assignment 1.2) is where it counts: here compute_color is judged on its own
+        own_rays = judge_compute_color(integrator, check.name, data)
+        if own_rays is not None and own_rays.right:
+            return check.succeed(
+                "compute_color is right: the image that your render() makes differs ("
+                + reason + "), which the check of render()'s rays in Assignment 1.2 "
+                "counts, not this one" + (f"; {own_rays.note}" if own_rays.note else ""))
     if check.name == "lazy" and not np.any(image):
         # LazyIntegrator.compute_color returns BLACK: once render() asks compute_color
         # (Assignment 1.2), the Lazy image is black, and 1.1 lives on in 1.2's loop
