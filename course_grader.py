@@ -19,6 +19,7 @@ import queue
 import shutil
 import sys
 import tempfile
+import time
 import tomllib
 import zipfile
 from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -39,6 +40,10 @@ STEP_TITLES = {
     "1.4": "Assignment 1.4: the Phong integrator",
 }
 LIMIT_NAMES = ("cpu_seconds", "wall_seconds", "memory_mib", "output_kib")
+# When students see what Gradescope shows: the tests (visibility) and what the grader
+# printed (stdout_visibility); the defaults are what results.json has always said
+GRADESCOPE_DEFAULTS = {"visibility": "visible", "stdout_visibility": "hidden"}
+VISIBILITIES = ("hidden", "visible", "after_due_date", "after_published")
 MAX_MODULE_BYTES = 1024 * 1024  # a course module larger than this is not taken
 OUTPUT_SHOWN = 4000  # characters of a step's output kept for the feedback
 REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
@@ -49,11 +54,13 @@ REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
 # ------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Config:
-    """The points of each step and the limits of a step's process (kit/grading.toml)."""
+    """The points of each step, the limits of a step's process and Gradescope's
+    visibilities (kit/grading.toml)."""
 
     points: dict
     limits: dict
     text: str  # the file's text, part of what makes a grading repeatable
+    gradescope: dict = field(default_factory=lambda: dict(GRADESCOPE_DEFAULTS))
 
 
 def load_config(path=CONFIG):
@@ -74,7 +81,15 @@ def load_config(path=CONFIG):
                     value > 0 or (table == "points" and value == 0)):
                 raise ValueError(f"{path}: [{table}] {key} must be a positive number, "
                                  f"got {value!r}")
-    return Config({step: points[step] for step in steps}, dict(limits), text)
+    gradescope = {**GRADESCOPE_DEFAULTS, **settings.get("gradescope", {})}
+    if sorted(gradescope) != sorted(GRADESCOPE_DEFAULTS):
+        raise ValueError(f"{path}: [gradescope] may give only "
+                         + ", ".join(GRADESCOPE_DEFAULTS))
+    for key, value in gradescope.items():
+        if value not in VISIBILITIES:
+            raise ValueError(f"{path}: [gradescope] {key} must be one of "
+                             f"{', '.join(VISIBILITIES)}, got {value!r}")
+    return Config({step: points[step] for step in steps}, dict(limits), text, gradescope)
 
 
 # ------------------------------------------------------------------------------------------
@@ -246,6 +261,7 @@ def grade_submission(submission, template, results, config, kit, servers):
     """Grades one submission and writes its folder of results; returns its record. Its
     steps run on a step server taken from the queue servers, and given back."""
     fingerprint = hashlib.sha256((submission.digest() + kit).encode()).hexdigest()
+    start = time.monotonic()
     with tempfile.TemporaryDirectory(prefix=f"pyrt-grading-{os.getpid()}-") as scratch:
         scratch = Path(scratch)
         server = servers.get()
@@ -262,6 +278,7 @@ def grade_submission(submission, template, results, config, kit, servers):
             "steps": steps,
             "total": sum(step["points"] for step in steps),
             "max_total": sum(config.points.values()),
+            "seconds": round(time.monotonic() - start, 2),
         }
         folder = results / submission.name
         if folder.exists():
@@ -269,7 +286,7 @@ def grade_submission(submission, template, results, config, kit, servers):
         folder.mkdir(parents=True)
         if (scratch / "images").is_dir():
             shutil.copytree(scratch / "images", folder / "images")
-    course_feedback.write_submission_reports(record, folder)
+    course_feedback.write_submission_reports(record, folder, config.gradescope)
     return record
 
 
