@@ -125,11 +125,9 @@ def find_submissions(folder):
         if entry.name.startswith("."):
             continue
         if entry.is_dir():
-            submission = Submission(entry.name, entry)
-            _read_folder(submission)
+            submission = read_submission(entry.name, entry)
         elif entry.suffix.lower() == ".zip" and entry.is_file():
-            submission = Submission(entry.stem, entry)
-            _read_zip(submission)
+            submission = read_submission(entry.stem, entry)
         else:
             continue
         if submission.name in submissions:
@@ -137,6 +135,16 @@ def find_submissions(folder):
                              f"{submissions[submission.name].path} and {entry}")
         submissions[submission.name] = submission
     return list(submissions.values())
+
+
+def read_submission(name, path):
+    """The Submission called name whose files are the folder or .zip file at path."""
+    submission = Submission(name, Path(path))
+    if submission.path.is_dir():
+        _read_folder(submission)
+    else:
+        _read_zip(submission)
+    return submission
 
 
 def _shallowest(paths):
@@ -303,9 +311,15 @@ def recorded(results, submission, kit):
 
 def grade_folder(submissions_folder, results, config, jobs=None, force=False, progress=True):
     """Grades every submission of submissions_folder into results (see the module's
-    docstring); returns the records, sorted by submission."""
+    docstring and grade_submissions); returns the records, sorted by submission."""
+    return grade_submissions(find_submissions(submissions_folder), results, config, jobs,
+                             force, progress)
+
+
+def grade_submissions(submissions, results, config, jobs=None, force=False, progress=True):
+    """Grades the Submissions into results (see the module's docstring); returns their
+    records, in the order of submissions."""
     results = Path(results)
-    submissions = find_submissions(submissions_folder)
     results.mkdir(parents=True, exist_ok=True)
     kit = kit_fingerprint(config)
     records = {}
