@@ -27,6 +27,7 @@ from pathlib import Path
 import course_feedback
 import course_grader
 import course_kit
+import course_sandbox
 
 ROOT_VARIABLE, DEFAULT_ROOT = "AUTOGRADER_ROOT", "/autograder"
 SUBMISSION_NAME = "submission"
@@ -40,11 +41,13 @@ ZIP_DATE = (2020, 1, 1, 0, 0, 0)
 SETUP_SH = """\
 #!/usr/bin/env bash
 # Gradescope runs this once, as root, when it builds the autograder's image (Ubuntu 22.04,
-# Python 3.10): the grader's requirements from PyPI.
+# Python 3.10): the grader's requirements from PyPI, and bubblewrap, the sandbox of each
+# step, from Ubuntu's packages (the grader uses it where the image lets it run, and says
+# which isolation it uses in what it prints).
 set -euo pipefail
 cd "$(dirname "$0")"
 apt-get update
-apt-get install -y --no-install-recommends python3 python3-pip
+apt-get install -y --no-install-recommends python3 python3-pip bubblewrap
 "${AUTOGRADER_PYTHON:-python3}" -m pip install --no-cache-dir -r requirements.txt
 """
 RUN_AUTOGRADER = """\
@@ -109,19 +112,20 @@ def gradescope_submission(folder):
     return submission
 
 
-def run(root):
+def run(root, isolation=None):
     """Grades root/submission/ into root/results/results.json (see the module's docstring);
     returns what it wrote."""
     root = Path(root)
     start = time.monotonic()
     results = root / "results"
     results.mkdir(parents=True, exist_ok=True)
+    results.chmod(0o700)  # the student's code may run as another user: not for its eyes
     try:
         config = course_grader.load_config(course_grader.CONFIG)
         submission = gradescope_submission(root / SUBMISSION_NAME)
         with tempfile.TemporaryDirectory(prefix="pyrt-autograder-") as graded:
             record, = course_grader.grade_submissions([submission], graded, config, jobs=1,
-                                                      progress=False)
+                                                      progress=False, isolation=isolation)
         outcome = course_feedback.gradescope_results(record, config.gradescope)
         for test in outcome["tests"]:
             print(f"{test['number']}: {test['status']}, {test['score']} of "
@@ -146,8 +150,9 @@ def main(argv=None):
         f"grades ${ROOT_VARIABLE}/{SUBMISSION_NAME}/ (default root {DEFAULT_ROOT}) into "
         "results/results.json.")
     parser.add_argument("command", choices=["run"])
-    parser.parse_args(argv)
-    run(Path(os.environ.get(ROOT_VARIABLE, DEFAULT_ROOT)))
+    course_sandbox.add_argument(parser)
+    args = parser.parse_args(argv)
+    run(Path(os.environ.get(ROOT_VARIABLE, DEFAULT_ROOT)), args.isolation)
     return 0
 
 

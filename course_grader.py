@@ -31,6 +31,7 @@ from tqdm import tqdm
 import course_feedback
 import course_isolation
 import course_kit
+import course_sandbox
 
 CONFIG = course_kit.KIT / "grading.toml"
 STEP_TITLES = {
@@ -213,6 +214,7 @@ def grade_steps(submission, template, scratch, config, server):
         shutil.copyfile(path, workdir / path.name)
     for name, content in submission.files.items():
         (workdir / name).write_bytes(content)
+    course_sandbox.hand_over(scratch, workdir, server.confinement.user)
     images = scratch / "images"
     verdicts = []
     for step, title in STEP_TITLES.items():
@@ -259,41 +261,45 @@ def kit_fingerprint(config):
     sha = hashlib.sha256()
     for name, content in course_kit.handout_files().items():
         sha.update(name.encode() + b"\0" + content + b"\0")
-    for path in framework_machinery() + [Path(course_isolation.__file__)]:
+    for path in framework_machinery() + [Path(course_isolation.__file__),
+                                         Path(course_sandbox.__file__)]:
         sha.update(path.read_bytes())
     sha.update(config.text.encode())
     return sha.hexdigest()
 
 
-def grade_submission(submission, template, results, config, kit, servers):
+def grade_submission(submission, template, results, config, kit, servers, isolation):
     """Grades one submission and writes its folder of results; returns its record. Its
-    steps run on a step server taken from the queue servers, and given back."""
+    steps run on a step server taken from the queue servers, and given back, isolated
+    as isolation (a course_sandbox.Isolation) says."""
     fingerprint = hashlib.sha256((submission.digest() + kit).encode()).hexdigest()
     start = time.monotonic()
-    with tempfile.TemporaryDirectory(prefix=f"pyrt-grading-{os.getpid()}-") as scratch:
-        scratch = Path(scratch)
-        server = servers.get()
-        try:
+    server = servers.get()
+    try:  # the server's next submission comes once this one's working copy is gone
+        with tempfile.TemporaryDirectory(prefix=f"pyrt-grading-{os.getpid()}-",
+                                         dir=server.confinement.cell) as scratch:
+            scratch = Path(scratch)
             steps = grade_steps(submission, template, scratch, config, server)
-        finally:
-            servers.put(server)
-        record = {
-            "submission": submission.name,
-            "fingerprint": fingerprint,
-            "files": {name: "submission" if name in submission.files else "handout"
-                      for name in course_kit.COURSE_MODULES},
-            "problems": submission.problems,
-            "steps": steps,
-            "total": sum(step["points"] for step in steps),
-            "max_total": sum(config.points.values()),
-            "seconds": round(time.monotonic() - start, 2),
-        }
-        folder = results / submission.name
-        if folder.exists():
-            shutil.rmtree(folder)
-        folder.mkdir(parents=True)
-        if (scratch / "images").is_dir():
-            shutil.copytree(scratch / "images", folder / "images")
+            record = {
+                "submission": submission.name,
+                "fingerprint": fingerprint,
+                "files": {name: "submission" if name in submission.files else "handout"
+                          for name in course_kit.COURSE_MODULES},
+                "problems": submission.problems,
+                "isolation": isolation.mode,
+                "steps": steps,
+                "total": sum(step["points"] for step in steps),
+                "max_total": sum(config.points.values()),
+                "seconds": round(time.monotonic() - start, 2),
+            }
+            folder = results / submission.name
+            if folder.exists():
+                shutil.rmtree(folder)
+            folder.mkdir(parents=True)
+            if (scratch / "images").is_dir():
+                shutil.copytree(scratch / "images", folder / "images")
+    finally:
+        servers.put(server)
     course_feedback.write_submission_reports(record, folder, config.gradescope)
     return record
 
@@ -309,19 +315,26 @@ def recorded(results, submission, kit):
     return record if record.get("fingerprint") == fingerprint else None
 
 
-def grade_folder(submissions_folder, results, config, jobs=None, force=False, progress=True):
+def grade_folder(submissions_folder, results, config, jobs=None, force=False, progress=True,
+                 isolation=None):
     """Grades every submission of submissions_folder into results (see the module's
     docstring and grade_submissions); returns the records, sorted by submission."""
     return grade_submissions(find_submissions(submissions_folder), results, config, jobs,
-                             force, progress)
+                             force, progress, isolation)
 
 
-def grade_submissions(submissions, results, config, jobs=None, force=False, progress=True):
-    """Grades the Submissions into results (see the module's docstring); returns their
+def grade_submissions(submissions, results, config, jobs=None, force=False, progress=True,
+                      isolation=None):
+    """Grades the Submissions into results (see the module's docstring), their steps
+    isolated as course_sandbox.choose(isolation) says, which it prints; returns their
     records, in the order of submissions."""
     results = Path(results)
     results.mkdir(parents=True, exist_ok=True)
-    kit = kit_fingerprint(config)
+    isolation = course_sandbox.choose(isolation)
+    print(f"Isolation of each step: {isolation.describe()}", flush=True)
+    if isolation.mode == "unprivileged user":
+        results.chmod(0o700)  # the steps' users may read what all may read
+    kit = kit_fingerprint(config) + isolation.mode
     records = {}
     if not force:
         for submission in submissions:
@@ -337,16 +350,19 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
         try:
             cores = course_isolation.cores()
             for index in range(jobs if todo else 0):
-                servers.put(course_isolation.StepServer(cores[index % len(cores)]))
+                servers.put(course_isolation.StepServer(
+                    cores[index % len(cores)], course_sandbox.confinement(isolation)))
             running = [pool.submit(grade_submission, submission, template, results, config,
-                                   kit, servers) for submission in todo]
+                                   kit, servers, isolation) for submission in todo]
             for done in tqdm(as_completed(running), total=len(running), unit="submission",
                              desc="grading", disable=not progress or not running):
                 record = done.result()
                 records[record["submission"]] = record
         finally:
             while not servers.empty():
-                servers.get().close()
+                server = servers.get()
+                server.close()
+                course_sandbox.close_confinement(server.confinement)
     ordered = [records[submission.name] for submission in submissions]
     course_feedback.write_grades(ordered, results / "grades.csv", REASON_LENGTH)
     return ordered
@@ -357,7 +373,8 @@ def main(args):
         config = load_config(args.config or CONFIG)
         if args.jobs is not None and args.jobs < 1:
             raise ValueError(f"--jobs must be 1 or more, got {args.jobs}")
-        records = grade_folder(args.submissions, args.out, config, args.jobs, args.force)
+        records = grade_folder(args.submissions, args.out, config, args.jobs, args.force,
+                               isolation=args.isolation)
     except (ValueError, FileNotFoundError) as error:
         sys.exit(f"course_kit.py grade: {error}")
     print(f"The grades of {len(records)} submissions: {Path(args.out) / 'grades.csv'}")

@@ -3,6 +3,7 @@ grader of what they hand in.
 
     python course_kit.py handout DIR        writes the students' base code into DIR
     python course_kit.py grade SUBMISSIONS --out RESULTS [--jobs N] [--force] [--config F]
+                                            [--isolation MODE]
     python course_kit.py autograder ZIP     writes Gradescope's autograder zip [--config F]
     python course_kit.py expected           remakes the checks' expected images, on
                                             purpose only (kit/checks/expected/)
@@ -246,6 +247,8 @@ def parse_args(argv):
                        help="grade again the submissions already graded")
     grade.add_argument("--config", default=None, metavar="FILE",
                        help="points and limits (default: kit/grading.toml)")
+    import course_sandbox
+    course_sandbox.add_argument(grade)
     autograder = commands.add_parser("autograder", help="write Gradescope's autograder zip")
     autograder.add_argument("zip", metavar="ZIP", help="the zip file to write")
     autograder.add_argument("--config", default=None, metavar="FILE",

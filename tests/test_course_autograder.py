@@ -74,7 +74,7 @@ def test_the_zip_has_setup_sh_and_an_executable_run_autograder_at_its_root(autog
         setup = archive.read("setup.sh").decode()
     assert modes["setup.sh"] & stat.S_IXUSR and modes["run_autograder"] & stat.S_IXUSR
     assert set(course_autograder.kit_files()) | {"setup.sh", "run_autograder"} == set(modes)
-    for needed in ("course_grader.py", "course_autograder.py", "kit/grading.toml",
+    for needed in ("course_grader.py", "course_sandbox.py", "kit/grading.toml",
                    "kit/checks/practice1_checks.py", "kit/checks/expected/practice1.npz",
                    "PyRT_Rendering.py", "references/figure1_phong.png"):
         assert needed in modes
@@ -94,6 +94,7 @@ def test_the_finished_framework_gets_every_point_through_run_autograder(autograd
     assert results["score"] == 100
     assert [(test["number"], test["name"], test["score"]) for test in results["tests"]] == [
         (step, title, 25) for step, title in course_grader.STEP_TITLES.items()]
+    assert ran.stdout.startswith("Isolation of each step: ")
 
 
 def test_the_untouched_handout_gets_none_with_each_steps_message(autograder_zip, handout,
