@@ -8,7 +8,8 @@ modules, which Gradescope unzips into ROOT/source/. run_autograder runs
 `python3 ROOT/source/course_autograder.py run`, which grades ROOT/submission/ as one
 submission with the checks, limits and points of `grade` (course_grader.py, the same
 code), and writes ROOT/results/results.json, also when the grader itself fails (score 0,
-the error in its output, the traceback in what it printed, which only the staff sees).
+the error in its output, the traceback in what it printed, which only the staff sees);
+when Python cannot even start, run_autograder writes one of its own.
 
 ROOT is the environment variable AUTOGRADER_ROOT, /autograder by default, and the Python
 that runs the grader AUTOGRADER_PYTHON, python3 by default: so the zip runs end to end in
@@ -24,8 +25,6 @@ import traceback
 import zipfile
 from pathlib import Path
 
-import course_feedback
-import course_grader
 import course_kit
 import course_sandbox
 
@@ -37,6 +36,9 @@ KIT_PATTERNS = ("course_*.py", "PyRT_*.py", "AppRenderer.py", "requirements.txt"
                 "kit/**/*.npz", "references/figure*.png")
 # Every file of the zip gets this date, so that the same kit makes the same bytes
 ZIP_DATE = (2020, 1, 1, 0, 0, 0)
+# The visibilities of the results of a grader that failed, whose settings may be what
+# failed: the message visible, the traceback for the staff only
+FAILED_VISIBILITY = {"visibility": "visible", "stdout_visibility": "hidden"}
 
 SETUP_SH = """\
 #!/usr/bin/env bash
@@ -53,9 +55,17 @@ apt-get install -y --no-install-recommends python3 python3-pip bubblewrap
 RUN_AUTOGRADER = """\
 #!/usr/bin/env bash
 # Gradescope runs this for each submission: grades ROOT/submission/ and writes
-# ROOT/results/results.json (ROOT: $AUTOGRADER_ROOT, by default /autograder).
+# ROOT/results/results.json (ROOT: $AUTOGRADER_ROOT, by default /autograder), also when
+# Python itself cannot start.
 ROOT="${AUTOGRADER_ROOT:-/autograder}"
-exec "${AUTOGRADER_PYTHON:-python3}" "$ROOT/source/course_autograder.py" run
+rm -f "$ROOT/results/results.json"
+"${AUTOGRADER_PYTHON:-python3}" "$ROOT/source/course_autograder.py" run
+if [ ! -s "$ROOT/results/results.json" ]; then
+    mkdir -p "$ROOT/results"
+    echo '{"score": 0, "output": "The autograder failed before it could grade, and your' \\
+        'course staff can see why.", "visibility": "visible", "stdout_visibility":' \\
+        '"hidden", "tests": []}' > "$ROOT/results/results.json"
+fi
 """
 
 
@@ -75,6 +85,7 @@ def kit_files():
 def write_zip(path, config=None):
     """Writes Gradescope's autograder zip to path, with the settings of the file config
     (default: kit/grading.toml), which must be valid."""
+    import course_grader
     files = kit_files()
     if config is not None:
         course_grader.load_config(config)
@@ -98,6 +109,7 @@ def gradescope_submission(folder):
     """The Submission in Gradescope's submission folder: its course modules wherever they
     lie (the shallowest of each name), else those of the shallowest .zip in it that has
     any."""
+    import course_grader
     submission = course_grader.read_submission(SUBMISSION_NAME, folder)
     if submission.files:
         return submission
@@ -121,6 +133,10 @@ def run(root, isolation=None):
     results.mkdir(parents=True, exist_ok=True)
     results.chmod(0o700)  # the student's code may run as another user: not for its eyes
     try:
+        # imported here, so that a grader that cannot even load (a requirement missing on
+        # the image) leaves its results.json too
+        import course_feedback
+        import course_grader
         config = course_grader.load_config(course_grader.CONFIG)
         submission = gradescope_submission(root / SUBMISSION_NAME)
         with tempfile.TemporaryDirectory(prefix="pyrt-autograder-") as graded:
@@ -134,7 +150,7 @@ def run(root, isolation=None):
         traceback.print_exc(file=sys.stdout)
         outcome = {"score": 0, "output": "The autograder failed, and your course staff can "
                    f"see why: {type(error).__name__}: {error}",
-                   **course_grader.GRADESCOPE_DEFAULTS, "tests": []}
+                   **FAILED_VISIBILITY, "tests": []}
     outcome["execution_time"] = round(time.monotonic() - start, 2)
     written = results / "results.json"
     partial = results / "results.json.part"

@@ -42,11 +42,10 @@ def autograder_root(autograder_zip, root):
     return root
 
 
-def run_autograder(root):
-    """Runs root/run_autograder from root, with this Python; returns (results.json read,
-    the CompletedProcess)."""
-    environment = dict(headless_env(), AUTOGRADER_ROOT=str(root),
-                       AUTOGRADER_PYTHON=sys.executable)
+def run_autograder(root, python=sys.executable):
+    """Runs root/run_autograder from root, with python (default: this one); returns
+    (results.json read, the CompletedProcess)."""
+    environment = dict(headless_env(), AUTOGRADER_ROOT=str(root), AUTOGRADER_PYTHON=python)
     del environment["PYTHONPATH"]  # the grader runs from source/, not from the repository
     ran = subprocess.run([str(root / "run_autograder")], cwd=root, env=environment,
                          capture_output=True, text=True, timeout=SUBPROCESS_TIMEOUT)
@@ -146,6 +145,23 @@ def test_a_grader_that_fails_still_leaves_a_valid_results_json(autograder_zip, t
                                         "see why: ValueError: ")
     assert "Traceback" in ran.stdout  # what it printed, which only the staff sees
     assert_gradescopes_format(results)
+
+
+def test_a_grader_that_cannot_load_or_start_still_leaves_a_valid_results_json(
+        autograder_zip, tmp_path):
+    root = autograder_root(autograder_zip, tmp_path)
+    grader = root / "source" / "course_grader.py"
+    grader.write_text("import a_requirement_not_installed\n" + grader.read_text())
+    results, _ = run_autograder(root)
+    assert results["score"] == 0 and results["tests"] == []
+    assert results["output"].endswith("ModuleNotFoundError: No module named "
+                                      "'a_requirement_not_installed'")
+    assert_gradescopes_format(results)
+    results, ran = run_autograder(root, python=str(tmp_path / "no-python"))
+    assert ran.returncode == 0
+    assert results == {"score": 0, "output": "The autograder failed before it could grade, "
+                       "and your course staff can see why.", "visibility": "visible",
+                       "stdout_visibility": "hidden", "tests": []}
 
 
 def test_a_submission_without_course_modules_says_so(tmp_path):
