@@ -5,7 +5,8 @@ holds (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py, wherev
 lie in it; the shallowest of each name counts) are copied over a fresh copy of the
 handout, and each assignment step's checks (kit/checks/practice1_checks.py, the students'
 own checks) run there in a process of their own (course_isolation.py) with limits of
-time, memory and output. The submissions themselves are only read.
+time, memory and output, isolated as course_sandbox.py chooses (bubblewrap's sandbox, an
+unprivileged user, or the process alone). The submissions themselves are only read.
 
 RESULTS gets grades.csv, and for each submission a folder with feedback.html, results.json
 (Gradescope's format), grading.json (the grader's record) and the images of the checks

@@ -167,7 +167,7 @@ def _tasks_of(uid):
     return count
 
 
-_held = {}  # user number -> the open lock file that holds it for this process
+_held = {}  # user number -> the descriptor of the lock file that holds it for this process
 
 
 def _take_user():
@@ -176,16 +176,18 @@ def _take_user():
     for user in range(FIRST_USER, FIRST_USER + USERS):
         if user in _held:
             continue
-        lock = open(os.path.join(LOCKS, f"pyrt-step-user-{user}.lock"), "a")
+        # O_NOFOLLOW: a link put in the shared folder leads the grader nowhere
+        lock = os.open(os.path.join(LOCKS, f"pyrt-step-user-{user}.lock"),
+                       os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o600)
         try:
             fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
-            lock.close()
+            os.close(lock)
             continue
         if _tasks_of(user) == 0:
             _held[user] = lock
             return user
-        lock.close()
+        os.close(lock)
     raise RuntimeError(f"no free user number for the steps among {USERS} from {FIRST_USER}")
 
 
@@ -210,7 +212,7 @@ def close_confinement(confinement):
     if confinement.cell is not None:
         shutil.rmtree(confinement.cell, ignore_errors=True)
     if confinement.user in _held:
-        _held.pop(confinement.user).close()
+        os.close(_held.pop(confinement.user))
 
 
 def hand_over(scratch, workdir, user):
