@@ -197,7 +197,10 @@ def _sweep(user):
     so that they count no more against the limit on processes: those of its user, when
     it has one of its own, else every process of the server's namespace but the server."""
     if user is None:
-        os.kill(-1, signal.SIGKILL)  # spares this process and the namespace's first
+        try:
+            os.kill(-1, signal.SIGKILL)  # spares this process and the namespace's first
+        except ProcessLookupError:  # nothing was left running
+            pass
     elif os.fork() == 0:  # as the step's user, whose processes only it may signal
         try:
             become(user, None)

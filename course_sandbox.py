@@ -122,8 +122,9 @@ def bubblewrap_runs():
 
 @functools.lru_cache(maxsize=None)
 def other_user_runs_python():
-    """Whether a step's user could run this Python and its packages (as root only)."""
-    return _as_root() and _runs([sys.executable, "-I", "-c", "import numpy"],
+    """Whether a step's user could run this Python and its packages (as root, on Linux,
+    whose prctl and /proc the steps' users need)."""
+    return _as_root() and sys.platform.startswith("linux") and _runs([sys.executable, "-I", "-c", "import numpy"],
                                 user=FIRST_USER, group=FIRST_USER, extra_groups=[],
                                 cwd="/")
 

@@ -10,6 +10,8 @@ import shutil
 import socket
 import subprocess
 import sys
+import tempfile
+from pathlib import Path
 
 import pytest
 
@@ -18,6 +20,10 @@ import course_kit
 import course_sandbox
 import course_kit_students as students
 
+UNPRIVILEGED_USER = pytest.mark.skipif(
+    not course_sandbox.other_user_runs_python(),
+    reason="no unprivileged user here: it needs root, Linux, and a Python that another "
+    "user may run")
 BUBBLEWRAP = pytest.mark.skipif(
     not course_sandbox.bubblewrap_runs(),
     reason="bubblewrap cannot run here (Debian and Ubuntu package bubblewrap; CI installs "
@@ -112,8 +118,9 @@ def hostile(answers, fields):
     return filled
 
 
-def grade(tmp_path, submissions, handout, wall=GENEROUS_WALL, results=None):
-    """{name: record} of the submissions ({name: answers}) graded under bubblewrap with
+def grade(tmp_path, submissions, handout, wall=GENEROUS_WALL, results=None,
+          isolation="bubblewrap"):
+    """{name: record} of the submissions ({name: answers}) graded under isolation with
     a step's wall-clock limit of wall seconds, two at a time."""
     folder = tmp_path / "submissions"
     for name, answers in submissions.items():
@@ -122,7 +129,7 @@ def grade(tmp_path, submissions, handout, wall=GENEROUS_WALL, results=None):
     config.write_text(CONFIG.format(wall=wall))
     records = course_grader.grade_folder(folder, results or tmp_path / "results",
                                          course_grader.load_config(config), jobs=2,
-                                         progress=False, isolation="bubblewrap")
+                                         progress=False, isolation=isolation)
     return {record["submission"]: record for record in records}
 
 
@@ -131,7 +138,7 @@ def steps_of(record):
 
 
 def processes_of(users):
-    """The processes of users (numbers; None, the grader's own user, left out)."""
+    """The processes of users (numbers; None, the grader's own user, matches none)."""
     found = []
     for entry in os.scandir("/proc"):
         try:
@@ -143,19 +150,23 @@ def processes_of(users):
 
 
 @pytest.fixture
-def step_users(monkeypatch):
-    """The users the step servers started in the test give their steps (None: the
-    grader's own, without root)."""
-    users = []
+def confinements(monkeypatch):
+    """The Confinements of the step servers started in the test."""
+    made = []
     original = course_sandbox.confinement
 
     def recording(isolation):
-        made = original(isolation)
-        users.append(made.user)
-        return made
+        made.append(original(isolation))
+        return made[-1]
 
     monkeypatch.setattr(course_sandbox, "confinement", recording)
-    return users
+    return made
+
+
+def left_running(confinements):
+    """The processes of the steps' users (none without root: the steps are then the
+    grader's user, and the end of bubblewrap's namespace kills what they leave)."""
+    return processes_of({made.user for made in confinements})
 
 
 @pytest.fixture(scope="module")
@@ -215,6 +226,28 @@ def test_the_sandbox_shows_no_folder_of_the_grader_but_its_cell(tmp_path):
 # ------------------------------------------------------------------------------------------
 # Hostile submissions under bubblewrap
 # ------------------------------------------------------------------------------------------
+def hostile_fields(base):
+    """The fields of the hostile answers, with their files in the folder base: (the
+    results' folder, with a secret in it, the folder of another submission, a file
+    outside, the fields)."""
+    results = base / "results"
+    results.mkdir()
+    (results / "secret.txt").write_text(SECRET)
+    others, outside = base / "submissions" / "right", base / "outside.txt"
+    return results, others, outside, {"{OUTSIDE!r}": repr(str(outside)),
+                                      "{OTHER!r}": repr(str(others / "PyRT_Core.py")),
+                                      "{RESULTS!r}": repr(str(results / "secret.txt"))}
+
+
+@pytest.fixture
+def open_folder():
+    """A new folder that all may read, outside pytest's own, which only its user may."""
+    folder = Path(tempfile.mkdtemp(prefix="pyrt-open-"))
+    folder.chmod(0o755)
+    yield folder
+    shutil.rmtree(folder)
+
+
 @pytest.fixture
 def listening():
     """A socket listening on an ephemeral port of 127.0.0.1."""
@@ -227,15 +260,8 @@ def listening():
 @BUBBLEWRAP
 def test_hostile_submissions_are_contained_and_the_others_graded_as_if_alone(
         handout, tmp_path, listening):
-    others = tmp_path / "submissions" / "right"
-    results = tmp_path / "results"
-    results.mkdir()
-    (results / "secret.txt").write_text(SECRET)
-    outside = tmp_path / "outside.txt"
-    fields = {"{OUTSIDE!r}": repr(str(outside)),
-              "{OTHER!r}": repr(str(others / "PyRT_Core.py")),
-              "{RESULTS!r}": repr(str(results / "secret.txt")),
-              "{PORT}": str(listening.getsockname()[1])}
+    results, others, outside, fields = hostile_fields(tmp_path)
+    fields["{PORT}"] = str(listening.getsockname()[1])
     records = grade(tmp_path, {
         "right": {}, "writes_through_c": hostile(WRITES_THROUGH_C, fields),
         "connects": hostile(CONNECTS, fields), "reads_others": hostile(READS_OTHERS, fields),
@@ -254,29 +280,31 @@ def test_hostile_submissions_are_contained_and_the_others_graded_as_if_alone(
 
 @BUBBLEWRAP
 def test_a_fork_bomb_meets_the_limit_on_processes_and_leaves_nothing_running(
-        handout, tmp_path, step_users):
+        handout, tmp_path, confinements):
     # First a bounded number of forks, to see the limit hold before the bomb runs
-    # (without root the steps are the grader's user, and the namespace's end kills them)
     for name, answers in (("many", FORKS_MANY), ("bomb", FORK_BOMB)):
         records = grade(tmp_path / name, {"forks": answers}, handout)
         steps = steps_of(records["forks"])
         assert all(steps[step]["passed"] for step in ("1.1", "1.2", "1.3"))
         forked = [int(line.split()[1]) for line in steps["1.4"]["output"].splitlines()
                   if line.startswith("forked ")]
-        assert forked and max(forked) < course_sandbox.MAX_PROCESSES, forked
-        assert step_users and processes_of(step_users) == []
+        # The step itself counts: it makes fewer children than the limit
+        assert forked and max(forked) < min(made.processes for made in confinements)
+        assert left_running(confinements) == []
+    assert all(made.processes == course_sandbox.MAX_PROCESSES
+               for made in confinements if made.user is not None)
 
 
 @BUBBLEWRAP
 def test_a_step_that_sleeps_past_the_wall_clock_limit_is_stopped(handout, tmp_path,
-                                                                step_users):
+                                                                confinements):
     # Only the sleeping step's verdict is asserted: with a limit this short, the others'
     # could depend on the machine's load
     records = grade(tmp_path, {"sleeps": SLEEPS}, handout, wall=2)
     assert steps_of(records["sleeps"])["1.4"]["reason"] == (
         "did not finish within 2 s, the time limit of a step: the code hangs or is far too "
         "slow")
-    assert step_users and processes_of(step_users) == []
+    assert confinements and left_running(confinements) == []
 
 
 @BUBBLEWRAP
@@ -292,3 +320,26 @@ def test_the_sandbox_has_no_network_and_shows_none_of_the_graders_folders(tmp_pa
         course_sandbox.close_confinement(confinement)
     assert output == "False True [(1, 'lo')]\n"
     assert not os.path.exists(confinement.cell)
+
+
+@UNPRIVILEGED_USER
+def test_an_unprivileged_user_cannot_write_outside_read_the_results_or_fork_without_end(
+        handout, open_folder, confinements):
+    # What this mode holds (docs/course-kit.md): not the network, nor what all may read.
+    # Everything lies in a folder all may read: only the grader protects its results
+    results, others, outside, fields = hostile_fields(open_folder)
+    results.chmod(0o755)
+    records = grade(open_folder, {"right": {}, "writes_through_c": hostile(WRITES_THROUGH_C,
+                                                                        fields),
+                               "reads_the_results": hostile(READS_OTHERS, {
+                                   **fields, "{OTHER!r}": fields["{RESULTS!r}"]}),
+                               "fork_bomb": FORK_BOMB},
+                    handout, results=results, isolation="unprivileged user")
+    for name in ("right", "writes_through_c", "reads_the_results"):
+        assert records[name]["total"] == 100, (name, records[name]["steps"])
+    assert not outside.exists()
+    assert "written by C" not in (others / "PyRT_Core.py").read_text()
+    forked = [int(line.split()[1]) for line in steps_of(records["fork_bomb"])["1.4"][
+        "output"].splitlines() if line.startswith("forked ")]
+    assert forked and max(forked) < course_sandbox.MAX_PROCESSES
+    assert left_running(confinements) == []
