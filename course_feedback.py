@@ -30,13 +30,14 @@ img { width: 240px; height: 240px; image-rendering: pixelated; border: 1px solid
 """
 
 
-def write_submission_reports(record, folder):
-    """Writes grading.json, feedback.html and results.json of one submission into folder."""
+def write_submission_reports(record, folder, visibility=None):
+    """Writes grading.json, feedback.html and results.json of one submission into folder;
+    visibility: Gradescope's visibilities (see gradescope_results)."""
     folder = Path(folder)
     (folder / RECORD).write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
     (folder / FEEDBACK).write_text(feedback_html(record), encoding="utf-8")
-    (folder / GRADESCOPE).write_text(json.dumps(gradescope_results(record), indent=2) + "\n",
-                                     encoding="utf-8")
+    (folder / GRADESCOPE).write_text(
+        json.dumps(gradescope_results(record, visibility), indent=2) + "\n", encoding="utf-8")
 
 
 def _verdict(passed):
@@ -57,9 +58,7 @@ def feedback_html(record):
              f"<title>Practice 1: {e(record['submission'])}</title><style>{STYLE}</style>"
              f"</head><body>\n<h1>Practice 1: {e(record['submission'])}, "
              f"{_number(record['total'])} of {_number(record['max_total'])} points</h1>"]
-    taken = [name for name, origin in record["files"].items() if origin == "submission"]
-    parts.append("<p>Graded from your " + (", ".join(map(e, taken)) or "no file")
-                 + "; every other file is the handout's.</p>")
+    parts.append(f"<p>{e(graded_from(record))}</p>")
     parts += [f"<p class=\"failed\">{e(problem)}</p>" for problem in record["problems"]]
     for step in record["steps"]:
         verdict = _verdict(step["passed"])
@@ -76,6 +75,13 @@ def feedback_html(record):
         parts.append("</section>")
     parts.append("</body></html>\n")
     return "\n".join(parts)
+
+
+def graded_from(record):
+    """The sentence that says which of the student's files were graded."""
+    taken = [name for name, origin in record["files"].items() if origin == "submission"]
+    return ("Graded from your " + (", ".join(taken) or "no file")
+            + "; every other file is the handout's.")
 
 
 def check_reason(check):
@@ -123,20 +129,25 @@ def _stories_html(check):
         for who, story in columns) + "</div>")
 
 
-def gradescope_results(record):
+def gradescope_results(record, visibility=None):
     """The record in the format of Gradescope's autograder results (results.json): the
-    total score, and one test per step with its score, max_score, status and output."""
+    total score, the grading's time, what was graded, and one test per step, numbered by
+    its step, with its score, max_score, status and output (the checks' messages, the
+    likely mistakes among them). visibility: {"visibility": ..., "stdout_visibility": ...},
+    by default the tests visible and the grader's output hidden."""
     tests = []
     for step in record["steps"]:
         lines = [step_note(step)] if step_note(step) else []
         lines += [check["message"] + (f"\n{check['error']}" if check["error"] else "")
                   + (f"\n{check['story']}" if check.get("story") else "")
                   for check in step["checks"]]
-        tests.append({"name": step["title"], "score": step["points"],
+        tests.append({"name": step["title"], "number": step["step"], "score": step["points"],
                       "max_score": step["max_points"], "status": _verdict(step["passed"]),
                       "output": "\n\n".join(lines)})
-    return {"score": record["total"], "visibility": "visible",
-            "stdout_visibility": "hidden", "tests": tests}
+    shown = {"visibility": "visible", "stdout_visibility": "hidden", **(visibility or {})}
+    return {"score": record["total"], "execution_time": record.get("seconds", 0),
+            "output": "\n".join([graded_from(record)] + record["problems"]), **shown,
+            "tests": tests}
 
 
 def write_grades(records, path, reason_length):

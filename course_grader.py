@@ -5,7 +5,8 @@ holds (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py, wherev
 lie in it; the shallowest of each name counts) are copied over a fresh copy of the
 handout, and each assignment step's checks (kit/checks/practice1_checks.py, the students'
 own checks) run there in a process of their own (course_isolation.py) with limits of
-time, memory and output. The submissions themselves are only read.
+time, memory and output, isolated as course_sandbox.py chooses (bubblewrap's sandbox, an
+unprivileged user, or the process alone). The submissions themselves are only read.
 
 RESULTS gets grades.csv, and for each submission a folder with feedback.html, results.json
 (Gradescope's format), grading.json (the grader's record) and the images of the checks
@@ -19,6 +20,7 @@ import queue
 import shutil
 import sys
 import tempfile
+import time
 import tomllib
 import zipfile
 from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -30,6 +32,7 @@ from tqdm import tqdm
 import course_feedback
 import course_isolation
 import course_kit
+import course_sandbox
 
 CONFIG = course_kit.KIT / "grading.toml"
 STEP_TITLES = {
@@ -39,6 +42,10 @@ STEP_TITLES = {
     "1.4": "Assignment 1.4: the Phong integrator",
 }
 LIMIT_NAMES = ("cpu_seconds", "wall_seconds", "memory_mib", "output_kib")
+# When students see what Gradescope shows: the tests (visibility) and what the grader
+# printed (stdout_visibility); the defaults are what results.json has always said
+GRADESCOPE_DEFAULTS = {"visibility": "visible", "stdout_visibility": "hidden"}
+VISIBILITIES = ("hidden", "visible", "after_due_date", "after_published")
 MAX_MODULE_BYTES = 1024 * 1024  # a course module larger than this is not taken
 OUTPUT_SHOWN = 4000  # characters of a step's output kept for the feedback
 REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
@@ -49,11 +56,13 @@ REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
 # ------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Config:
-    """The points of each step and the limits of a step's process (kit/grading.toml)."""
+    """The points of each step, the limits of a step's process and Gradescope's
+    visibilities (kit/grading.toml)."""
 
     points: dict
     limits: dict
     text: str  # the file's text, part of what makes a grading repeatable
+    gradescope: dict = field(default_factory=lambda: dict(GRADESCOPE_DEFAULTS))
 
 
 def load_config(path=CONFIG):
@@ -74,7 +83,15 @@ def load_config(path=CONFIG):
                     value > 0 or (table == "points" and value == 0)):
                 raise ValueError(f"{path}: [{table}] {key} must be a positive number, "
                                  f"got {value!r}")
-    return Config({step: points[step] for step in steps}, dict(limits), text)
+    gradescope = {**GRADESCOPE_DEFAULTS, **settings.get("gradescope", {})}
+    if sorted(gradescope) != sorted(GRADESCOPE_DEFAULTS):
+        raise ValueError(f"{path}: [gradescope] may give only "
+                         + ", ".join(GRADESCOPE_DEFAULTS))
+    for key, value in gradescope.items():
+        if value not in VISIBILITIES:
+            raise ValueError(f"{path}: [gradescope] {key} must be one of "
+                             f"{', '.join(VISIBILITIES)}, got {value!r}")
+    return Config({step: points[step] for step in steps}, dict(limits), text, gradescope)
 
 
 # ------------------------------------------------------------------------------------------
@@ -110,11 +127,9 @@ def find_submissions(folder):
         if entry.name.startswith("."):
             continue
         if entry.is_dir():
-            submission = Submission(entry.name, entry)
-            _read_folder(submission)
+            submission = read_submission(entry.name, entry)
         elif entry.suffix.lower() == ".zip" and entry.is_file():
-            submission = Submission(entry.stem, entry)
-            _read_zip(submission)
+            submission = read_submission(entry.stem, entry)
         else:
             continue
         if submission.name in submissions:
@@ -122,6 +137,16 @@ def find_submissions(folder):
                              f"{submissions[submission.name].path} and {entry}")
         submissions[submission.name] = submission
     return list(submissions.values())
+
+
+def read_submission(name, path):
+    """The Submission called name whose files are the folder or .zip file at path."""
+    submission = Submission(name, Path(path))
+    if submission.path.is_dir():
+        _read_folder(submission)
+    else:
+        _read_zip(submission)
+    return submission
 
 
 def _shallowest(paths):
@@ -190,6 +215,7 @@ def grade_steps(submission, template, scratch, config, server):
         shutil.copyfile(path, workdir / path.name)
     for name, content in submission.files.items():
         (workdir / name).write_bytes(content)
+    course_sandbox.hand_over(scratch, workdir, server.confinement.user)
     images = scratch / "images"
     verdicts = []
     for step, title in STEP_TITLES.items():
@@ -236,40 +262,46 @@ def kit_fingerprint(config):
     sha = hashlib.sha256()
     for name, content in course_kit.handout_files().items():
         sha.update(name.encode() + b"\0" + content + b"\0")
-    for path in framework_machinery() + [Path(course_isolation.__file__)]:
+    for path in framework_machinery() + [Path(course_isolation.__file__),
+                                         Path(course_sandbox.__file__)]:
         sha.update(path.read_bytes())
     sha.update(config.text.encode())
     return sha.hexdigest()
 
 
-def grade_submission(submission, template, results, config, kit, servers):
+def grade_submission(submission, template, results, config, kit, servers, isolation):
     """Grades one submission and writes its folder of results; returns its record. Its
-    steps run on a step server taken from the queue servers, and given back."""
+    steps run on a step server taken from the queue servers, and given back, isolated
+    as isolation (a course_sandbox.Isolation) says."""
     fingerprint = hashlib.sha256((submission.digest() + kit).encode()).hexdigest()
-    with tempfile.TemporaryDirectory(prefix=f"pyrt-grading-{os.getpid()}-") as scratch:
-        scratch = Path(scratch)
-        server = servers.get()
-        try:
+    start = time.monotonic()
+    server = servers.get()
+    try:  # the server's next submission comes once this one's working copy is gone
+        with tempfile.TemporaryDirectory(prefix=f"pyrt-grading-{os.getpid()}-",
+                                         dir=server.confinement.cell) as scratch:
+            scratch = Path(scratch)
             steps = grade_steps(submission, template, scratch, config, server)
-        finally:
-            servers.put(server)
-        record = {
-            "submission": submission.name,
-            "fingerprint": fingerprint,
-            "files": {name: "submission" if name in submission.files else "handout"
-                      for name in course_kit.COURSE_MODULES},
-            "problems": submission.problems,
-            "steps": steps,
-            "total": sum(step["points"] for step in steps),
-            "max_total": sum(config.points.values()),
-        }
-        folder = results / submission.name
-        if folder.exists():
-            shutil.rmtree(folder)
-        folder.mkdir(parents=True)
-        if (scratch / "images").is_dir():
-            shutil.copytree(scratch / "images", folder / "images")
-    course_feedback.write_submission_reports(record, folder)
+            record = {
+                "submission": submission.name,
+                "fingerprint": fingerprint,
+                "files": {name: "submission" if name in submission.files else "handout"
+                          for name in course_kit.COURSE_MODULES},
+                "problems": submission.problems,
+                "isolation": isolation.mode,
+                "steps": steps,
+                "total": sum(step["points"] for step in steps),
+                "max_total": sum(config.points.values()),
+                "seconds": round(time.monotonic() - start, 2),
+            }
+            folder = results / submission.name
+            if folder.exists():
+                shutil.rmtree(folder)
+            folder.mkdir(parents=True)
+            if (scratch / "images").is_dir():
+                shutil.copytree(scratch / "images", folder / "images")
+    finally:
+        servers.put(server)
+    course_feedback.write_submission_reports(record, folder, config.gradescope)
     return record
 
 
@@ -284,13 +316,26 @@ def recorded(results, submission, kit):
     return record if record.get("fingerprint") == fingerprint else None
 
 
-def grade_folder(submissions_folder, results, config, jobs=None, force=False, progress=True):
+def grade_folder(submissions_folder, results, config, jobs=None, force=False, progress=True,
+                 isolation=None):
     """Grades every submission of submissions_folder into results (see the module's
-    docstring); returns the records, sorted by submission."""
+    docstring and grade_submissions); returns the records, sorted by submission."""
+    return grade_submissions(find_submissions(submissions_folder), results, config, jobs,
+                             force, progress, isolation)
+
+
+def grade_submissions(submissions, results, config, jobs=None, force=False, progress=True,
+                      isolation=None):
+    """Grades the Submissions into results (see the module's docstring), their steps
+    isolated as course_sandbox.choose(isolation) says, which it prints; returns their
+    records, in the order of submissions."""
     results = Path(results)
-    submissions = find_submissions(submissions_folder)
     results.mkdir(parents=True, exist_ok=True)
-    kit = kit_fingerprint(config)
+    isolation = course_sandbox.choose(isolation)
+    print(f"Isolation of each step: {isolation.describe()}", flush=True)
+    if isolation.mode == "unprivileged user":
+        results.chmod(0o700)  # the steps' users may read what all may read
+    kit = kit_fingerprint(config) + isolation.mode
     records = {}
     if not force:
         for submission in submissions:
@@ -306,16 +351,19 @@ def grade_folder(submissions_folder, results, config, jobs=None, force=False, pr
         try:
             cores = course_isolation.cores()
             for index in range(jobs if todo else 0):
-                servers.put(course_isolation.StepServer(cores[index % len(cores)]))
+                servers.put(course_isolation.StepServer(
+                    cores[index % len(cores)], course_sandbox.confinement(isolation)))
             running = [pool.submit(grade_submission, submission, template, results, config,
-                                   kit, servers) for submission in todo]
+                                   kit, servers, isolation) for submission in todo]
             for done in tqdm(as_completed(running), total=len(running), unit="submission",
                              desc="grading", disable=not progress or not running):
                 record = done.result()
                 records[record["submission"]] = record
         finally:
             while not servers.empty():
-                servers.get().close()
+                server = servers.get()
+                server.close()
+                course_sandbox.close_confinement(server.confinement)
     ordered = [records[submission.name] for submission in submissions]
     course_feedback.write_grades(ordered, results / "grades.csv", REASON_LENGTH)
     return ordered
@@ -326,7 +374,8 @@ def main(args):
         config = load_config(args.config or CONFIG)
         if args.jobs is not None and args.jobs < 1:
             raise ValueError(f"--jobs must be 1 or more, got {args.jobs}")
-        records = grade_folder(args.submissions, args.out, config, args.jobs, args.force)
+        records = grade_folder(args.submissions, args.out, config, args.jobs, args.force,
+                               isolation=args.isolation)
     except (ValueError, FileNotFoundError) as error:
         sys.exit(f"course_kit.py grade: {error}")
     print(f"The grades of {len(records)} submissions: {Path(args.out) / 'grades.csv'}")

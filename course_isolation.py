@@ -1,16 +1,16 @@
 """One step of the students' checks run on one submission's working copy, in a process of
 its own, for the grader (course_grader.py).
 
-The processes are forked by a step server, `python -I -B course_isolation.py [CORE]`, that
-has loaded what every course module loads (numpy, OpenCV, matplotlib) once, so that a
-step's process starts at once; each is still new, and shares nothing with the others. A
-server given a CORE runs on that core alone, and so do its steps' processes: the grader
-gives each server a core of its own, and PyRT's own render() (the finished framework
-graded as a submission) then stays in its process instead of starting workers. The server
-reads one request per line on its standard input (JSON: workdir, step, result, log,
-limits), forks the step's process, waits for it at most the step's wall-clock limit
-(killing it then), and answers one line: {"code": its exit code, negative for a signal,
-"timed_out": true or false}.
+The processes are forked by a step server, `python -I -B course_isolation.py [--core N]`
+(the other options: see Confinement), that has loaded what every course module loads
+(numpy, OpenCV, matplotlib) once, so that a step's process starts at once; each is still
+new, and shares nothing with the others. A server given a core runs on that core alone,
+and so do its steps' processes: the grader gives each server a core of its own, and PyRT's
+own render() (the finished framework graded as a submission) then stays in its process
+instead of starting workers. The server reads one request per line on its standard input
+(JSON: workdir, step, result, log, limits), forks the step's process, waits for it at most
+the step's wall-clock limit (killing it then), and answers one line: {"code": its exit
+code, negative for a signal, "timed_out": true or false}.
 
 Before the student's code is imported, the step's process
 - sends what it prints into the log file, outside the working copy,
@@ -25,8 +25,12 @@ outside the working copy. A process that ends before that (os._exit, a crash, a 
 leaves no result, and the grader says why.
 
 This keeps a submission from disturbing the others by accident. It is no security
-sandbox: code that sets out to escape can (see docs/course-kit.md).
+sandbox: code that sets out to escape can (see docs/course-kit.md). A Confinement adds
+what course_sandbox.py chooses: the server run inside bubblewrap, the steps run as a user
+of their own with a limit on their processes, and whatever a step leaves running killed
+when it ends.
 """
+import argparse
 import json
 import os
 import resource
@@ -35,7 +39,9 @@ import subprocess
 import sys
 import time
 import traceback
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Optional
 
 # What every course module imports, loaded once by the step server
 PRELOADED = ("numpy", "cv2", "matplotlib.pyplot")
@@ -53,6 +59,7 @@ WRITING_EVENTS = {"os.remove": 1, "os.rmdir": 1, "os.mkdir": 1, "os.rename": 2,
 PROCESS_EVENTS = {"subprocess.Popen", "os.system", "os.exec", "os.posix_spawn", "os.spawn",
                   "os.fork", "os.forkpty"}
 WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_APPEND | os.O_CREAT | os.O_TRUNC
+PR_SET_CHILD_SUBREAPER, PR_SET_NO_NEW_PRIVS = 36, 38  # Linux's prctl options
 
 
 # ------------------------------------------------------------------------------------------
@@ -116,13 +123,35 @@ def _python_paths():
         os.path.realpath(path).startswith(prefix + os.sep) for prefix in prefixes)]
 
 
-def step_process(workdir, step, result_path, log_path, limits):
-    """The body of a step's process: see the module's docstring."""
+def _prctl(option, value):
+    """Linux's prctl(option, value), which Python's os module does not offer."""
+    import ctypes
+    if ctypes.CDLL(None, use_errno=True).prctl(option, value, 0, 0, 0) != 0:
+        raise OSError(ctypes.get_errno(), f"prctl({option}, {value}) failed")
+
+
+def become(user, processes):
+    """Makes this process user's (a number, with no groups, and no way back to more
+    privileges: a set-user-ID program keeps it), when it is not None, and limits the
+    processes (threads included) of its user to `processes`, when not None."""
+    if user is not None:
+        _prctl(PR_SET_NO_NEW_PRIVS, 1)
+        os.setgroups([])
+        os.setgid(user)
+        os.setuid(user)
+    if processes is not None:
+        resource.setrlimit(resource.RLIMIT_NPROC, (processes, processes))
+
+
+def step_process(workdir, step, result_path, log_path, limits, user=None, processes=None):
+    """The body of a step's process: see the module's docstring; user and processes as
+    become takes them, once its log and result files are open."""
     log = os.open(log_path, os.O_WRONLY | os.O_APPEND)
     os.dup2(log, 1)
     os.dup2(log, 2)
     signal.signal(signal.SIGXFSZ, signal.SIG_DFL)  # Python ignores it: a write would fail
     result = open(result_path, "w", encoding="utf-8")
+    become(user, processes)
     set_limits(limits)
     os.chdir(workdir)
     sys.path[:] = [workdir, os.path.join(workdir, "tests")] + _python_paths()
@@ -143,28 +172,57 @@ def step_process(workdir, step, result_path, log_path, limits):
 # ------------------------------------------------------------------------------------------
 # The step server
 # ------------------------------------------------------------------------------------------
-def serve(core=None):
-    """The step server's loop: see the module's docstring."""
+def serve(core=None, user=None, processes=None, sweep=False):
+    """The step server's loop: see the module's docstring. user, processes: as become
+    takes them, for each step's process; sweep: whether to kill what a step leaves
+    running."""
     if core is not None and hasattr(os, "sched_setaffinity"):
         os.sched_setaffinity(0, {core})
+    if sweep:  # what a step leaves running becomes this server's, and is waited for
+        _prctl(PR_SET_CHILD_SUBREAPER, 1)
     for name in PRELOADED:
         __import__(name)
     for line in sys.stdin:
         request = json.loads(line)
         pid = os.fork()
         if pid == 0:
-            _child(request)
+            _child(request, user, processes)
         code, timed_out = _wait(pid, request["limits"]["wall_seconds"])
+        if sweep:
+            _sweep(user)
         print(json.dumps({"code": code, "timed_out": timed_out}), flush=True)
 
 
-def _child(request):
+def _sweep(user):
+    """Kills every process that the step left running, and waits until they are gone,
+    so that they count no more against the limit on processes: those of its user, when
+    it has one of its own, else every process of the server's namespace but the server."""
+    if user is None:
+        try:
+            os.kill(-1, signal.SIGKILL)  # spares this process and the namespace's first
+        except ProcessLookupError:  # nothing was left running
+            pass
+    elif os.fork() == 0:  # as the step's user, whose processes only it may signal
+        try:
+            become(user, None)
+            if os.getuid() == user != 0:
+                os.kill(-1, signal.SIGKILL)
+        finally:
+            os._exit(0)
+    while True:  # the helper, and the killed, which are this server's as it is subreaper
+        try:
+            os.waitpid(-1, 0)
+        except ChildProcessError:
+            return
+
+
+def _child(request, user, processes):
     """The forked step's process: runs step_process and ends, never returning."""
     code = 1
     try:
         os.dup2(os.open(os.devnull, os.O_RDONLY), 0)
         step_process(request["workdir"], request["step"], request["result"],
-                     request["log"], request["limits"])
+                     request["log"], request["limits"], user, processes)
         code = 0
     except SystemExit as error:
         code = error.code if isinstance(error.code, int) else 1
@@ -196,17 +254,40 @@ def _wait(pid, seconds):
 # ------------------------------------------------------------------------------------------
 # In the grader
 # ------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Confinement:
+    """What confines a step server and its steps besides this module's guard (chosen by
+    course_sandbox.py): the command line the server runs inside, with its variables; the
+    user its steps run as and the limit on that user's processes (None: the grader's
+    user, no limit); whether what a step leaves running is killed; the folder in which the
+    working copies must lie (None: anywhere)."""
+
+    wrapper: tuple = ()
+    variables: dict = field(default_factory=dict)
+    user: Optional[int] = None
+    processes: Optional[int] = None
+    sweep: bool = False
+    cell: Optional[str] = None
+
+
 class StepServer:
     """A step server process (see the module's docstring), used by one thread at a time;
-    core: the core it runs on, or None for any."""
+    core: the core it runs on, or None for any; confinement: a Confinement."""
 
-    def __init__(self, core=None):
+    def __init__(self, core=None, confinement=Confinement()):
         environment = {name: os.environ[name] for name in KEPT_VARIABLES
                        if name in os.environ}
-        environment.update(ENVIRONMENT)
+        environment.update(ENVIRONMENT, **confinement.variables)
+        options = [] if core is None else ["--core", str(core)]
+        if confinement.user is not None:
+            options += ["--user", str(confinement.user)]
+        if confinement.processes is not None:
+            options += ["--processes", str(confinement.processes)]
+        options += ["--sweep"] if confinement.sweep else []
+        self.confinement = confinement
         self.process = subprocess.Popen(
-            [sys.executable, "-I", "-B", str(Path(__file__).resolve())]
-            + ([] if core is None else [str(core)]),
+            [*confinement.wrapper, sys.executable, "-I", "-B",
+             str(Path(__file__).resolve()), *options],
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=environment, text=True)
 
     def close(self):
@@ -261,4 +342,10 @@ def cores():
 
 
 if __name__ == "__main__":
-    serve(int(sys.argv[1]) if len(sys.argv) > 1 else None)
+    parser = argparse.ArgumentParser(description="The step server (see the docstring).")
+    parser.add_argument("--core", type=int)
+    parser.add_argument("--user", type=int)
+    parser.add_argument("--processes", type=int)
+    parser.add_argument("--sweep", action="store_true")
+    arguments = parser.parse_args()
+    serve(arguments.core, arguments.user, arguments.processes, arguments.sweep)

@@ -3,6 +3,8 @@ grader of what they hand in.
 
     python course_kit.py handout DIR        writes the students' base code into DIR
     python course_kit.py grade SUBMISSIONS --out RESULTS [--jobs N] [--force] [--config F]
+                                            [--isolation MODE]
+    python course_kit.py autograder ZIP     writes Gradescope's autograder zip [--config F]
     python course_kit.py expected           remakes the checks' expected images, on
                                             purpose only (kit/checks/expected/)
 
@@ -245,6 +247,13 @@ def parse_args(argv):
                        help="grade again the submissions already graded")
     grade.add_argument("--config", default=None, metavar="FILE",
                        help="points and limits (default: kit/grading.toml)")
+    import course_sandbox
+    course_sandbox.add_argument(grade)
+    autograder = commands.add_parser("autograder", help="write Gradescope's autograder zip")
+    autograder.add_argument("zip", metavar="ZIP", help="the zip file to write")
+    autograder.add_argument("--config", default=None, metavar="FILE",
+                            help="points, limits and visibilities (default: "
+                            "kit/grading.toml)")
     commands.add_parser("expected", help="remake kit/checks/expected/practice1.npz from the "
                         "finished framework (only when its images change on purpose)")
     return parser.parse_args(argv)
@@ -260,6 +269,13 @@ def main(argv=None):
     elif args.command == "grade":
         import course_grader
         return course_grader.main(args)
+    elif args.command == "autograder":
+        import course_autograder
+        try:
+            print(f"Wrote {course_autograder.write_zip(args.zip, args.config)}: upload it as "
+                  "the autograder of a Gradescope assignment (docs/course-kit.md)")
+        except (ValueError, OSError) as error:
+            sys.exit(f"course_kit.py autograder: {error}")
     else:
         import course_references
         print(f"Wrote {course_references.write_expected(EXPECTED)}")

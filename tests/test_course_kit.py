@@ -573,12 +573,14 @@ def test_results_json_has_the_fields_of_gradescopes_format(graded):
     _, _, results, records, _, _ = graded
     for name, record in records.items():
         result = json.loads((results / name / course_feedback.GRADESCOPE).read_text())
-        assert sorted(result) == ["score", "stdout_visibility", "tests", "visibility"]
+        assert sorted(result) == ["execution_time", "output", "score", "stdout_visibility",
+                                  "tests", "visibility"]
         assert result["score"] == sum(test["score"] for test in result["tests"])
-        assert [test["name"] for test in result["tests"]] == list(
-            course_grader.STEP_TITLES.values())
+        assert [(test["number"], test["name"]) for test in result["tests"]] == list(
+            course_grader.STEP_TITLES.items())
         for test in result["tests"]:
-            assert sorted(test) == ["max_score", "name", "output", "score", "status"]
+            assert sorted(test) == ["max_score", "name", "number", "output", "score",
+                                    "status"]
             assert test["status"] in ("passed", "failed")
             assert (test["status"] == "passed") == (test["score"] == test["max_score"])
 

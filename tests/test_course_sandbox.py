@@ -1,0 +1,345 @@
+"""The isolation of the grader's steps (course_sandbox.py): the choice of a mode, and
+hostile submissions, written as a student could write them, graded under bubblewrap.
+
+Each hostile submission is the right solution with hostile code in one step. Under
+bubblewrap each is stopped or has no effect, gets its verdict, and the right submission
+graded beside them gets all its points. The tests that need bubblewrap are skipped where
+it cannot run (CI installs it, see .ci/run)."""
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import pytest
+
+import course_grader
+import course_kit
+import course_sandbox
+import course_kit_students as students
+
+UNPRIVILEGED_USER = pytest.mark.skipif(
+    not course_sandbox.other_user_runs_python(),
+    reason="no unprivileged user here: it needs root, Linux, and a Python that another "
+    "user may run")
+BUBBLEWRAP = pytest.mark.skipif(
+    not course_sandbox.bubblewrap_runs(),
+    reason="bubblewrap cannot run here (Debian and Ubuntu package bubblewrap; CI installs "
+    "it): the sandbox's tests need it")
+CONFIG = """\
+[points]
+"1.1" = 25
+"1.2" = 25
+"1.3" = 25
+"1.4" = 25
+
+[limits]
+cpu_seconds = 60
+wall_seconds = {wall}
+memory_mib = 2048
+output_kib = 256
+"""
+GENEROUS_WALL = 300  # seconds: a normal step takes one, however loaded the machine
+SECRET = "the grader's secret: 42"
+
+# Hostile answers, each run on the first call of its compute_color; {NAME} fields are
+# filled in by the tests with paths and a port
+def once(integrator, code):
+    """code run on the first call of integrator's compute_color only, then the right
+    answer of its stub."""
+    stub = {"DepthIntegrator": "depth", "IntersectionIntegrator": "intersection",
+            "NormalIntegrator": "normal", "PhongIntegrator": "phong"}[integrator]
+    guarded = "".join("    " + line for line in code.splitlines(keepends=True))
+    return {stub: f"if not getattr({integrator}, 'tried', False):\n"
+                  f"    {integrator}.tried = True\n{guarded}" + students.RIGHT[stub]}
+
+
+WRITES_THROUGH_C = once("DepthIntegrator", """\
+import ctypes, os
+libc = ctypes.CDLL(None)
+for path in [{OUTSIDE!r}, {OTHER!r}]:
+    fd = libc.open(path.encode(), os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
+    if fd >= 0:
+        libc.write(fd, b"written by C", 12)
+        libc.close(fd)
+""")
+CONNECTS = once("IntersectionIntegrator", """\
+import socket
+try:
+    with socket.create_connection(("127.0.0.1", {PORT}), timeout=5) as connection:
+        connection.sendall(b"the answers of the checks")
+except OSError:
+    pass
+""")
+READS_OTHERS = once("NormalIntegrator", """\
+for path in [{OTHER!r}, {RESULTS!r}]:
+    try:
+        text = open(path).read()
+    except OSError:
+        continue
+    raise RuntimeError('read ' + path + ': ' + text[:60])
+""")
+# Children that wait for ever, as many as the system lets it make (at most 300)
+FORKS_MANY = once("PhongIntegrator", """\
+import ctypes
+libc = ctypes.CDLL(None)
+forked = 0
+for _ in range(300):
+    child = libc.fork()
+    if child == 0:
+        libc.pause()
+    forked += child > 0
+print('forked', forked, flush=True)
+""")
+# Every process forks again, until the system refuses
+FORK_BOMB = once("PhongIntegrator", """\
+import ctypes, os
+libc = ctypes.CDLL(None)
+first = os.getpid()
+forked = 0
+while libc.fork() >= 0:
+    forked += 1
+if os.getpid() != first:
+    libc.pause()
+print('forked', forked, flush=True)
+""")
+SLEEPS = {"phong": "import time\ntime.sleep(3600)\n"}
+
+
+def hostile(answers, fields):
+    """answers with their fields ({placeholder: text}) filled in."""
+    filled = {}
+    for stub, code in answers.items():
+        for placeholder, text in fields.items():
+            code = code.replace(placeholder, text)
+        filled[stub] = code
+    return filled
+
+
+def grade(tmp_path, submissions, handout, wall=GENEROUS_WALL, results=None,
+          isolation="bubblewrap"):
+    """{name: record} of the submissions ({name: answers}) graded under isolation with
+    a step's wall-clock limit of wall seconds, two at a time."""
+    folder = tmp_path / "submissions"
+    for name, answers in submissions.items():
+        students.write_submission(folder / name, handout, answers)
+    config = tmp_path / "grading.toml"
+    config.write_text(CONFIG.format(wall=wall))
+    records = course_grader.grade_folder(folder, results or tmp_path / "results",
+                                         course_grader.load_config(config), jobs=2,
+                                         progress=False, isolation=isolation)
+    return {record["submission"]: record for record in records}
+
+
+def steps_of(record):
+    return {step["step"]: step for step in record["steps"]}
+
+
+def processes_of(users):
+    """The processes of users (numbers; None, the grader's own user, matches none)."""
+    found = []
+    for entry in os.scandir("/proc"):
+        try:
+            if entry.name.isdigit() and entry.stat().st_uid in users:
+                found.append(entry.name)
+        except OSError:  # a process that has just ended
+            pass
+    return found
+
+
+@pytest.fixture
+def confinements(monkeypatch):
+    """The Confinements of the step servers started in the test."""
+    made = []
+    original = course_sandbox.confinement
+
+    def recording(isolation):
+        made.append(original(isolation))
+        return made[-1]
+
+    monkeypatch.setattr(course_sandbox, "confinement", recording)
+    return made
+
+
+def left_running(confinements):
+    """The processes of the steps' users (none without root: the steps are then the
+    grader's user, and the end of bubblewrap's namespace kills what they leave)."""
+    return processes_of({made.user for made in confinements})
+
+
+@pytest.fixture(scope="module")
+def handout(tmp_path_factory):
+    return course_kit.write_handout(tmp_path_factory.mktemp("sandbox") / "handout")
+
+
+# ------------------------------------------------------------------------------------------
+# The choice of an isolation
+# ------------------------------------------------------------------------------------------
+def test_an_isolation_asked_for_is_taken_and_an_unknown_one_refused():
+    assert course_sandbox.choose("process") == course_sandbox.Isolation("process",
+                                                                        "asked for")
+    with pytest.raises(course_sandbox.IsolationUnavailable) as error:
+        course_sandbox.choose("docker")
+    assert str(error.value) == ("unknown isolation 'docker'; the isolations are bubblewrap, "
+                                "unprivileged user, process")
+
+
+def test_without_bwrap_bubblewrap_is_refused_and_a_weaker_isolation_says_why(monkeypatch):
+    monkeypatch.setattr(course_sandbox.shutil, "which", lambda name: None)
+    monkeypatch.setattr(course_sandbox, "bubblewrap_runs", lambda: False)
+    monkeypatch.setattr(course_sandbox, "other_user_runs_python", lambda: False)
+    with pytest.raises(course_sandbox.IsolationUnavailable) as error:
+        course_sandbox.choose("bubblewrap")
+    assert str(error.value) == ("the isolation bubblewrap cannot run: bwrap is not installed "
+                                "(Debian and Ubuntu package bubblewrap)")
+    chosen = course_sandbox.choose()
+    assert chosen.mode == "process"
+    assert chosen.describe().startswith("process (bwrap is not installed (Debian and Ubuntu "
+                                        "package bubblewrap); no unprivileged user: ")
+
+
+def test_the_grader_says_which_isolation_it_uses_in_the_terminal_and_the_record(
+        handout, tmp_path, capsys):
+    folder = tmp_path / "submissions"
+    shutil.copytree(handout, folder / "untouched",
+                    ignore=lambda _, names: [n for n in names
+                                             if n not in course_kit.COURSE_MODULES])
+    config = course_grader.load_config()
+    records = course_grader.grade_folder(folder, tmp_path / "results", config, jobs=1,
+                                         progress=False, isolation="process")
+    assert capsys.readouterr().out == "Isolation of each step: process (asked for)\n"
+    assert records[0]["isolation"] == "process"
+
+
+def test_the_sandbox_shows_no_folder_of_the_grader_but_its_cell(tmp_path):
+    command = course_sandbox.bubblewrap_command(tmp_path / "cell", root=True)
+    assert command[:2] == ["bwrap", "--die-with-parent"]
+    for option in course_sandbox.NAMESPACES + ("--cap-drop", "--tmpfs"):
+        assert option in command
+    read_write = [command[at + 1] for at, option in enumerate(command) if option == "--bind"]
+    assert read_write == [str(tmp_path / "cell")]
+    assert command.index("--tmpfs") < command.index("--bind")  # the cell lies in /tmp
+
+
+# ------------------------------------------------------------------------------------------
+# Hostile submissions under bubblewrap
+# ------------------------------------------------------------------------------------------
+def hostile_fields(base):
+    """The fields of the hostile answers, with their files in the folder base: (the
+    results' folder, with a secret in it, the folder of another submission, a file
+    outside, the fields)."""
+    results = base / "results"
+    results.mkdir()
+    (results / "secret.txt").write_text(SECRET)
+    others, outside = base / "submissions" / "right", base / "outside.txt"
+    return results, others, outside, {"{OUTSIDE!r}": repr(str(outside)),
+                                      "{OTHER!r}": repr(str(others / "PyRT_Core.py")),
+                                      "{RESULTS!r}": repr(str(results / "secret.txt"))}
+
+
+@pytest.fixture
+def open_folder():
+    """A new folder that all may read, outside pytest's own, which only its user may."""
+    folder = Path(tempfile.mkdtemp(prefix="pyrt-open-"))
+    folder.chmod(0o755)
+    yield folder
+    shutil.rmtree(folder)
+
+
+@pytest.fixture
+def listening():
+    """A socket listening on an ephemeral port of 127.0.0.1."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as server:
+        server.bind(("127.0.0.1", 0))
+        server.listen(8)
+        yield server
+
+
+@BUBBLEWRAP
+def test_hostile_submissions_are_contained_and_the_others_graded_as_if_alone(
+        handout, tmp_path, listening):
+    results, others, outside, fields = hostile_fields(tmp_path)
+    fields["{PORT}"] = str(listening.getsockname()[1])
+    records = grade(tmp_path, {
+        "right": {}, "writes_through_c": hostile(WRITES_THROUGH_C, fields),
+        "connects": hostile(CONNECTS, fields), "reads_others": hostile(READS_OTHERS, fields),
+    }, handout, results=results)
+    for name, record in records.items():
+        assert record["isolation"] == "bubblewrap"
+        assert record["total"] == 100, (name, [step["reason"] for step in record["steps"]])
+    # The write through C reached neither the folder outside nor the other submission
+    assert not outside.exists()
+    assert "written by C" not in (others / "PyRT_Core.py").read_text()
+    # No connection arrived
+    listening.setblocking(False)
+    with pytest.raises(BlockingIOError):
+        listening.accept()
+
+
+@BUBBLEWRAP
+def test_a_fork_bomb_meets_the_limit_on_processes_and_leaves_nothing_running(
+        handout, tmp_path, confinements):
+    # First a bounded number of forks, to see the limit hold before the bomb runs
+    for name, answers in (("many", FORKS_MANY), ("bomb", FORK_BOMB)):
+        records = grade(tmp_path / name, {"forks": answers}, handout)
+        steps = steps_of(records["forks"])
+        assert all(steps[step]["passed"] for step in ("1.1", "1.2", "1.3"))
+        forked = [int(line.split()[1]) for line in steps["1.4"]["output"].splitlines()
+                  if line.startswith("forked ")]
+        # The step itself counts: it makes fewer children than the limit
+        assert forked and max(forked) < min(made.processes for made in confinements)
+        assert left_running(confinements) == []
+    assert all(made.processes == course_sandbox.MAX_PROCESSES
+               for made in confinements if made.user is not None)
+
+
+@BUBBLEWRAP
+def test_a_step_that_sleeps_past_the_wall_clock_limit_is_stopped(handout, tmp_path,
+                                                                confinements):
+    # Only the sleeping step's verdict is asserted: with a limit this short, the others'
+    # could depend on the machine's load
+    records = grade(tmp_path, {"sleeps": SLEEPS}, handout, wall=2)
+    assert steps_of(records["sleeps"])["1.4"]["reason"] == (
+        "did not finish within 2 s, the time limit of a step: the code hangs or is far too "
+        "slow")
+    assert confinements and left_running(confinements) == []
+
+
+@BUBBLEWRAP
+def test_the_sandbox_has_no_network_and_shows_none_of_the_graders_folders(tmp_path):
+    (tmp_path / "grader's.txt").write_text(SECRET)
+    confinement = course_sandbox.confinement(course_sandbox.Isolation("bubblewrap"))
+    try:
+        probe = [*confinement.wrapper, sys.executable, "-I", "-c",
+                 f"import os, socket; print(os.path.exists({str(tmp_path)!r}), "
+                 "os.path.isdir(os.getcwd()), socket.if_nameindex())"]
+        output = subprocess.run(probe, capture_output=True, text=True, check=True).stdout
+    finally:
+        course_sandbox.close_confinement(confinement)
+    assert output == "False True [(1, 'lo')]\n"
+    assert not os.path.exists(confinement.cell)
+
+
+@UNPRIVILEGED_USER
+def test_an_unprivileged_user_cannot_write_outside_read_the_results_or_fork_without_end(
+        handout, open_folder, confinements):
+    # What this mode holds (docs/course-kit.md): not the network, nor what all may read.
+    # Everything lies in a folder all may read: only the grader protects its results
+    results, others, outside, fields = hostile_fields(open_folder)
+    results.chmod(0o755)
+    records = grade(open_folder, {"right": {}, "writes_through_c": hostile(WRITES_THROUGH_C,
+                                                                        fields),
+                               "reads_the_results": hostile(READS_OTHERS, {
+                                   **fields, "{OTHER!r}": fields["{RESULTS!r}"]}),
+                               "fork_bomb": FORK_BOMB},
+                    handout, results=results, isolation="unprivileged user")
+    for name in ("right", "writes_through_c", "reads_the_results"):
+        assert records[name]["total"] == 100, (name, records[name]["steps"])
+    assert not outside.exists()
+    assert "written by C" not in (others / "PyRT_Core.py").read_text()
+    forked = [int(line.split()[1]) for line in steps_of(records["fork_bomb"])["1.4"][
+        "output"].splitlines() if line.startswith("forked ")]
+    assert forked and max(forked) < course_sandbox.MAX_PROCESSES
+    assert left_running(confinements) == []
