@@ -19,13 +19,17 @@ import queue
 import shutil
 import sys
 import tempfile
-import tomllib
 import zipfile
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
 from tqdm import tqdm
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # tomllib came with Python 3.11; tomli is the same reader, for Python 3.10
+    import tomli as tomllib
 
 import course_feedback
 import course_isolation
