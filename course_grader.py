@@ -203,6 +203,8 @@ def grade_steps(submission, template, scratch, config, server):
         if result is None:
             verdict.update(passed=False, reason=why)
         else:
+            # the system's doing, not the student's: grade_submission takes it out
+            verdict["limits_not_set"] = result["limits_not_set"]
             verdict["checks"] = [_kept_images(check, step, images)
                                  for check in result["checks"]]
             failed = [check for check in verdict["checks"] if not check["passed"]]
@@ -257,6 +259,8 @@ def grade_submission(submission, template, results, config, kit, servers):
             steps = grade_steps(submission, template, scratch, config, server)
         finally:
             servers.put(server)
+        limits_not_set = sorted({line for step in steps
+                                 for line in step.pop("limits_not_set", ())})
         record = {
             "submission": submission.name,
             "fingerprint": fingerprint,
@@ -266,6 +270,7 @@ def grade_submission(submission, template, results, config, kit, servers):
             "steps": steps,
             "total": sum(step["points"] for step in steps),
             "max_total": sum(config.points.values()),
+            "limits_not_set": limits_not_set,
         }
         folder = results / submission.name
         if folder.exists():
@@ -322,10 +327,19 @@ def grade_folder(submissions_folder, results, config, jobs=None, force=False, pr
                 servers.get().close()
     ordered = [records[submission.name] for submission in submissions]
     course_feedback.write_grades(ordered, results / "grades.csv", REASON_LENGTH)
+    limits_not_set = sorted({line for record in ordered
+                             for line in record.get("limits_not_set", ())})
+    if limits_not_set:
+        print("course_kit.py grade: this system refused some limits of a step's process, "
+              "so the steps ran without them (no grade suffers for it): "
+              + "; ".join(limits_not_set), file=sys.stderr)
     return ordered
 
 
 def main(args):
+    unsupported = course_isolation.unsupported()
+    if unsupported:
+        sys.exit(f"course_kit.py grade: {unsupported}")
     try:
         config = load_config(args.config or CONFIG)
         if args.jobs is not None and args.jobs < 1:

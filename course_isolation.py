@@ -20,8 +20,8 @@ Before the student's code is imported, the step's process
   own libraries,
 - installs an audit hook that refuses, and notes, every write outside the working copy or
   into its checks (tests/) and every start of another process.
-At the end it writes the checks' verdicts and the refusals as JSON to the result file,
-outside the working copy. A process that ends before that (os._exit, a crash, a limit)
+At the end it writes the checks' verdicts, the refusals and the limits the system would
+not set as JSON to the result file, outside the working copy. A process that ends before that (os._exit, a crash, a limit)
 leaves no result, and the grader says why.
 
 This keeps a submission from disturbing the others by accident. It is no security
@@ -29,13 +29,17 @@ sandbox: code that sets out to escape can (see docs/course-kit.md).
 """
 import json
 import os
-import resource
 import signal
 import subprocess
 import sys
 import time
 import traceback
 from pathlib import Path
+
+try:
+    import resource
+except ImportError:  # Windows: no process limits, and no fork either (see unsupported)
+    resource = None
 
 # What every course module imports, loaded once by the step server
 PRELOADED = ("numpy", "cv2", "matplotlib.pyplot")
@@ -60,14 +64,23 @@ WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_APPEND | os.O_CREAT | os.O_TRUNC
 # ------------------------------------------------------------------------------------------
 def set_limits(limits):
     """Lowers this process's limits: processor time, address space, the size of any file
-    it writes (its output included), no core files."""
+    it writes (its output included), no core files. Returns a line for each limit that
+    the system refused (macOS often refuses one of the address space): the step runs
+    without it, and the grader tells the teaching assistant."""
     cpu = int(limits["cpu_seconds"])
-    resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
     memory = int(limits["memory_mib"]) * 1024 * 1024
-    resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
     output = int(limits["output_kib"]) * 1024
-    resource.setrlimit(resource.RLIMIT_FSIZE, (output, output))
-    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    refused = []
+    for setting, name, values in (
+            (f"cpu_seconds = {cpu}", "RLIMIT_CPU", (cpu, cpu + 1)),
+            (f"memory_mib = {limits['memory_mib']}", "RLIMIT_AS", (memory, memory)),
+            (f"output_kib = {limits['output_kib']}", "RLIMIT_FSIZE", (output, output)),
+            ("no core files", "RLIMIT_CORE", (0, 0))):
+        try:
+            resource.setrlimit(getattr(resource, name), values)
+        except (ValueError, OSError) as error:
+            refused.append(f"{setting} ({name}: {type(error).__name__}: {error})")
+    return refused
 
 
 def guard(workdir, refused):
@@ -123,7 +136,7 @@ def step_process(workdir, step, result_path, log_path, limits):
     os.dup2(log, 2)
     signal.signal(signal.SIGXFSZ, signal.SIG_DFL)  # Python ignores it: a write would fail
     result = open(result_path, "w", encoding="utf-8")
-    set_limits(limits)
+    limits_not_set = set_limits(limits)
     os.chdir(workdir)
     sys.path[:] = [workdir, os.path.join(workdir, "tests")] + _python_paths()
     import practice1_checks
@@ -135,7 +148,7 @@ def step_process(workdir, step, result_path, log_path, limits):
                            "message": check.message, "error": check.error,
                            "images": {kind: str(path) for kind, path in check.images.items()}}
                           for check in checks],
-               "refused": refused}, result)
+               "refused": refused, "limits_not_set": limits_not_set}, result)
     result.close()
 
 
@@ -195,6 +208,19 @@ def _wait(pid, seconds):
 # ------------------------------------------------------------------------------------------
 # In the grader
 # ------------------------------------------------------------------------------------------
+def unsupported():
+    """Why the grader cannot run on this system, in one sentence, or None when it can."""
+    if resource is None or not hasattr(os, "fork"):
+        return ("the grader runs on Linux, macOS, WSL or Gradescope: it needs process "
+                "limits (the resource module) and os.fork, which this system lacks (the "
+                "handout and its checks run anywhere)")
+    return None
+
+
+# What a step server runs: this file (the tests run one that changes the system first)
+SERVER_SCRIPT = Path(__file__).resolve()
+
+
 class StepServer:
     """A step server process (see the module's docstring), used by one thread at a time;
     core: the core it runs on, or None for any."""
@@ -204,7 +230,7 @@ class StepServer:
                        if name in os.environ}
         environment.update(ENVIRONMENT)
         self.process = subprocess.Popen(
-            [sys.executable, "-I", "-B", str(Path(__file__).resolve())]
+            [sys.executable, "-I", "-B", str(SERVER_SCRIPT)]
             + ([] if core is None else [str(core)]),
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=environment, text=True)
 
