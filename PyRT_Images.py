@@ -13,9 +13,21 @@ from concurrent.futures import ThreadPoolExecutor
 from math import isfinite
 from pathlib import Path
 
-import cv2
 import matplotlib.pyplot as plt
 import numpy as np
+
+# What repairs OpenCV. With opencv-python and opencv-python-headless both installed (the
+# course asks for the first, PyRT's requirements for the second), uninstalling either
+# removes files they share: cv2 is then gone, or an empty folder without what PyRT uses.
+OPENCV_FIX = ("as happens when one of opencv-python and opencv-python-headless is "
+              "uninstalled while both are installed. Fix it with\n    pip install "
+              "--force-reinstall opencv-python-headless\n(or opencv-python, which also has "
+              "OpenCV's windows)")
+try:
+    import cv2
+except ImportError as error:
+    raise ImportError(f"PyRT needs OpenCV, and import cv2 fails ({error}), {OPENCV_FIX}"
+                      ) from None
 
 
 def tonemap_image(image, gamma=2.5):
@@ -70,9 +82,7 @@ def display_image(image, tonemap=True):
     return tonemap_image(image) if tonemap else np.clip(np.nan_to_num(image), 0.0, 1.0)
 
 
-# What PyRT takes from OpenCV (cv2.utils for its log level). Where opencv-python and
-# opencv-python-headless were both installed and one was uninstalled, `import cv2` still
-# succeeds, but finds an empty folder without any of them.
+# What PyRT takes from OpenCV (cv2.utils for its log level)
 OPENCV_NAMES = ("createTonemap", "imencode", "imread", "cvtColor", "utils")
 
 
@@ -83,10 +93,8 @@ def opencv_problem():
     if not missing:
         return None
     where = getattr(cv2, "__file__", None) or ", ".join(getattr(cv2, "__path__", []))
-    return (f"OpenCV is broken: the cv2 package ({where}) has no {', '.join(missing)}, as "
-            "happens when one of opencv-python and opencv-python-headless is uninstalled "
-            "while both are installed. Fix it with\n    pip install --force-reinstall "
-            "opencv-python-headless\n(or opencv-python, which also has OpenCV's windows)")
+    return (f"OpenCV is broken: the cv2 package ({where}) has no {', '.join(missing)}, "
+            + OPENCV_FIX)
 
 
 def native_path(filename):

@@ -207,6 +207,19 @@ def test_with_an_empty_cv2_package_first_on_the_path_render_stops_before_it_star
     assert not (tmp_path / "out").exists()
 
 
+def test_without_cv2_the_course_modules_say_how_to_repair_opencv(tmp_path):
+    # as opencv-python 5 leaves it: the files both packages share are gone
+    result = run_python(["-c", "import sys; sys.modules['cv2'] = None; import PyRT_Common"],
+                        tmp_path)
+    assert result.returncode == 1
+    assert result.stderr.endswith(
+        "ImportError: PyRT needs OpenCV, and import cv2 fails (import of cv2 halted; None in "
+        "sys.modules), as happens when one of opencv-python and opencv-python-headless is "
+        "uninstalled while both are installed. Fix it with\n"
+        "    pip install --force-reinstall opencv-python-headless\n"
+        "(or opencv-python, which also has OpenCV's windows)\n"), result.stderr
+
+
 @pytest.mark.skipif(os.sep != "/", reason="a backslash separates folders here")
 def test_a_name_with_windows_separators_is_saved_where_it_means_with_a_note(
         tmp_path, monkeypatch, capsys):
