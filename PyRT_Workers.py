@@ -30,8 +30,7 @@ from PyRT_Sampling import render_block
 PARALLEL_MIN_SECONDS = {"fork": 0.2, "spawn": 2.0, "forkserver": 2.0}
 # The environment variable that chooses how worker processes start, one of
 # multiprocessing's start methods ("fork", "spawn", "forkserver"); the tests use it to run
-# under each. Unset: the method the script chose with multiprocessing.set_start_method, or
-# else the system's default (see start_method).
+# under each. Unset: see start_method.
 START_METHOD_VARIABLE = "PYRT_START_METHOD"
 
 
@@ -70,24 +69,24 @@ def worker_count(seconds):
 
 def start_method():
     """How worker processes start: PYRT_START_METHOD when set, else the method the script
-    set with multiprocessing.set_start_method, else the system's default, except that from
-    Python 3.12 on 'forkserver' replaces a default 'fork'."""
+    set with multiprocessing.set_start_method, else the system's default; but from Python
+    3.12 on, 'forkserver' where these give 'fork'."""
     chosen = os.environ.get(START_METHOD_VARIABLE)
     if chosen:
         if chosen not in multiprocessing.get_all_start_methods():
             raise ValueError(f"{START_METHOD_VARIABLE}={chosen!r}: this system's start "
                              "methods are " + ", ".join(multiprocessing.get_all_start_methods()))
         return chosen
-    chosen = multiprocessing.get_start_method(allow_none=True)
-    if chosen is not None:
-        return chosen
-    default = multiprocessing.get_all_start_methods()[0]  # the first is the default
+    # the first of all start methods is the system's default
+    chosen = (multiprocessing.get_start_method(allow_none=True)
+              or multiprocessing.get_all_start_methods()[0])
     # numpy's and OpenCV's thread pools make the process multi-threaded, and a forked
     # child of such a process may deadlock on a lock a thread held: Python 3.12 warns of
-    # it at each fork, and Python 3.14 makes forkserver Linux's default.
-    if default == "fork" and sys.version_info >= (3, 12):
+    # it at each fork, and Python 3.14 makes forkserver Linux's default. (A method that
+    # reads 'fork' may be no one's choice: tqdm, for one, fixes the default as it starts.)
+    if chosen == "fork" and sys.version_info >= (3, 12):
         return "forkserver"
-    return default
+    return chosen
 
 
 def _render_with_workers(camera, blocks, rows, count, payload, renderer):

@@ -7,6 +7,7 @@ import pickle
 import re
 import signal
 import sys
+import warnings
 from types import SimpleNamespace
 
 import numpy as np
@@ -154,13 +155,35 @@ def test_unless_chosen_workers_start_as_the_system_says_but_never_fork_from_3_12
     assert PyRT_Workers.start_method() == chosen
 
 
-def test_the_method_a_script_set_is_kept_unless_the_variable_says_otherwise(monkeypatch):
+@pytest.mark.parametrize("version, scripts_method, chosen", [
+    ((3, 11), "fork", "fork"), ((3, 11), "spawn", "spawn"), ((3, 13), "spawn", "spawn"),
+    ((3, 13), "fork", "forkserver")])  # or the fixed default: tqdm fixes it as it starts
+def test_the_method_a_script_set_is_kept_but_fork_from_3_12(monkeypatch, version,
+                                                             scripts_method, chosen):
     monkeypatch.delenv("PYRT_START_METHOD", raising=False)
-    monkeypatch.setattr(multiprocessing, "get_start_method", lambda allow_none: "fork")
+    monkeypatch.setattr(multiprocessing, "get_start_method", lambda allow_none: scripts_method)
+    monkeypatch.setattr(PyRT_Workers, "sys", SimpleNamespace(version_info=version))
+    assert PyRT_Workers.start_method() == chosen
+
+
+@pytest.mark.skipif("fork" not in multiprocessing.get_all_start_methods(),
+                    reason="this system has no fork")
+def test_the_variable_chooses_fork_even_from_3_12(monkeypatch):
+    monkeypatch.setenv("PYRT_START_METHOD", "fork")
     monkeypatch.setattr(PyRT_Workers, "sys", SimpleNamespace(version_info=(3, 13)))
     assert PyRT_Workers.start_method() == "fork"
-    monkeypatch.setenv("PYRT_START_METHOD", "spawn")
-    assert PyRT_Workers.start_method() == "spawn"
+
+
+@pytest.mark.skipif(os.environ.get("PYRT_START_METHOD") == "fork",
+                    reason="fork is asked for, warning included")
+def test_a_render_with_workers_starts_them_without_a_warning(tmp_path, worker_first):
+    # Python 3.12 and later warn when a multi-threaded process forks: PyRT does not
+    marker = worker_first()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        render_image(PixelGrey(str(tmp_path / "img")), fov90_scene(3, 8), workers=2)
+    assert marker.exists(), "no worker process rendered a block"
+    assert [str(warning.message) for warning in caught] == []
 
 
 def test_rows_are_cut_into_blocks_that_shrink_towards_the_end():
