@@ -1,6 +1,8 @@
 """PyRT_Workers.py through Integrator.render(): rendering in several processes (fork,
 spawn and forkserver: PYRT_START_METHOD chooses for the whole suite), how the work is
 split, errors in worker processes and scripts without the main guard."""
+import contextlib
+import io
 import multiprocessing
 import os
 import pickle
@@ -489,16 +491,20 @@ def test_coverage_measurement_is_no_debugger_workers_still_render(tmp_path, capf
 
 
 def render_normal_with_two_workers(filename):
-    return render_image(NormalIntegrator(filename), sphere_test_scene(width=24, height=24),
-                        workers=2)
+    """(the image, what PyRT printed to stderr meanwhile): the processes a forkserver starts
+    do not write to the test's stderr."""
+    with contextlib.redirect_stderr(io.StringIO()) as err:
+        image = render_image(NormalIntegrator(filename),
+                             sphere_test_scene(width=24, height=24), workers=2)
+    return image, err.getvalue()
 
 
-def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_path, capfd):
+def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_path):
     # A teaching assistant may render every student's integrator in a multiprocessing.Pool,
     # whose (daemonic) workers may not start processes of their own.
     with multiprocessing.get_context(PyRT_Workers.start_method()).Pool(1) as pool:
-        image = pool.apply(render_normal_with_two_workers, (str(tmp_path / "pooled"),))
-    assert capfd.readouterr().err.splitlines() == [
+        image, err = pool.apply(render_normal_with_two_workers, (str(tmp_path / "pooled"),))
+    assert err.splitlines() == [
         "PyRT: rendering in one process: this process is itself a daemonic worker process "
         "(of a multiprocessing.Pool, say), which may not start processes"]
     assert np.array_equal(image, normal_image_in_one_process(tmp_path))
