@@ -73,9 +73,10 @@ def start_method():
     3.12 on, 'forkserver' where these give 'fork'."""
     chosen = os.environ.get(START_METHOD_VARIABLE)
     if chosen:
-        if chosen not in multiprocessing.get_all_start_methods():
+        methods = multiprocessing.get_all_start_methods()
+        if chosen not in methods:
             raise ValueError(f"{START_METHOD_VARIABLE}={chosen!r}: this system's start "
-                             "methods are " + ", ".join(multiprocessing.get_all_start_methods()))
+                             "methods are " + ", ".join(methods))
         return chosen
     # the first of all start methods is the system's default
     chosen = (multiprocessing.get_start_method(allow_none=True)

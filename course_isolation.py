@@ -21,8 +21,8 @@ Before the student's code is imported, the step's process
 - installs an audit hook that refuses, and notes, every write outside the working copy or
   into its checks (tests/) and every start of another process.
 At the end it writes the checks' verdicts, the refusals and the limits the system would
-not set as JSON to the result file, outside the working copy. A process that ends before that (os._exit, a crash, a limit)
-leaves no result, and the grader says why.
+not set as JSON to the result file, outside the working copy. A process that ends before
+that (os._exit, a crash, a limit) leaves no result, and the grader says why.
 
 This keeps a submission from disturbing the others by accident. It is no security
 sandbox: code that sets out to escape can (see docs/course-kit.md).
