@@ -185,7 +185,9 @@ def test_a_render_with_workers_starts_them_without_a_warning(tmp_path, worker_fi
         warnings.simplefilter("always")
         render_image(PixelGrey(str(tmp_path / "img")), fov90_scene(3, 8), workers=2)
     assert marker.exists(), "no worker process rendered a block"
-    assert [str(warning.message) for warning in caught] == []
+    # (other warnings, such as a ResourceWarning of another test's garbage, may come)
+    assert [str(warning.message) for warning in caught if "fork" in str(warning.message)
+            ] == []
 
 
 def test_rows_are_cut_into_blocks_that_shrink_towards_the_end():
