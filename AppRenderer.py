@@ -178,7 +178,8 @@ def compare_with_course(renders, folder, size, samples_per_pixel=1):
 
 
 def render(integrator, scene, **options):
-    """Renders scene with integrator, prints the rendering time and returns the PNG path.
+    """Renders scene with integrator (which says where it saved the image), prints the
+    rendering time and returns the PNG path.
 
     options: keyword arguments of Integrator.render() (workers, samples_per_pixel, adaptive,
     tolerance), none for its defaults: the course's handout has a render() that takes no
@@ -187,9 +188,7 @@ def render(integrator, scene, **options):
     start = time.perf_counter()
     integrator.render(**options)
     print(f"Rendering time: {time.perf_counter() - start:.2f} s")
-    png = integrator.get_filename() + ".png"
-    print(f"Saved {png} (and .npy, .hdr)")
-    return png
+    return integrator.get_filename() + ".png"
 
 
 # Room a window needs on the screen besides its image, in pixels (width, height): borders,

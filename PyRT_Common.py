@@ -14,9 +14,10 @@ from math import acos, atan2, cos, floor, frexp, ldexp, pi, sin, sqrt
 from numbers import Real
 from pathlib import Path
 
-import cv2
 import matplotlib.pyplot as plt
 import numpy as np
+
+from PyRT_Images import cv2  # OpenCV, or an ImportError that says how to repair it
 
 __all__ = [
     "np", "cv2", "plt", "ABC", "abstractmethod",

@@ -186,13 +186,15 @@ class Scene:
         '.hdr' (Radiance HDR); creates the folder if needed. Each file appears whole or not
         at all: it is written to a temporary file that then replaces the target.
 
-        With tonemap False the PNG shows the linear values clipped to [0, 1] (Figure 2)."""
+        With tonemap False the PNG shows the linear values clipped to [0, 1] (Figure 2).
+        Returns the path of the PNG (a name with Windows's separators is saved where it
+        means on every system, PyRT_Images.native_path)."""
         image = self.rendered_image
         if image is None:
             raise RuntimeError("Scene.save_image: the scene has no image yet; call "
                                "scene.set_camera(camera) and render first")
         check_constants("Scene.save_image")
-        write_image_files(image, full_filename, tonemap)
+        return write_image_files(image, full_filename, tonemap)
 
 
 # ------------------------------------------------------------------------------------------

@@ -3,17 +3,31 @@
 Scene.save_image writes three files per image: the PNG to look at (the linear image
 mapped for display by the course's tonemapper, or clipped to [0, 1]), the raw linear image
 (.npy) and a Radiance HDR file (.hdr). Every file appears whole or not at all
-(write_atomically).
+(write_atomically), the .npy first: it needs numpy alone, so a render is never lost to a
+broken OpenCV (opencv_problem).
 """
 import os
+import sys
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from math import isfinite
 from pathlib import Path
 
-import cv2
 import matplotlib.pyplot as plt
 import numpy as np
+
+# What repairs OpenCV. With opencv-python and opencv-python-headless both installed (the
+# course asks for the first, PyRT's requirements for the second), uninstalling either
+# removes files they share: cv2 is then gone, or an empty folder without what PyRT uses.
+OPENCV_FIX = ("as happens when one of opencv-python and opencv-python-headless is "
+              "uninstalled while both are installed. Fix it with\n    pip install "
+              "--force-reinstall opencv-python-headless\n(or opencv-python, which also has "
+              "OpenCV's windows)")
+try:
+    import cv2
+except ImportError as error:
+    raise ImportError(f"PyRT needs OpenCV, and import cv2 fails ({error}), {OPENCV_FIX}"
+                      ) from None
 
 
 def tonemap_image(image, gamma=2.5):
@@ -68,26 +82,68 @@ def display_image(image, tonemap=True):
     return tonemap_image(image) if tonemap else np.clip(np.nan_to_num(image), 0.0, 1.0)
 
 
+# What PyRT takes from OpenCV (cv2.utils for its log level)
+OPENCV_NAMES = ("createTonemap", "imencode", "imread", "cvtColor", "utils")
+
+
+def opencv_problem():
+    """What is wrong with the installed OpenCV, with the command that fixes it, or None when
+    cv2 has everything PyRT uses."""
+    missing = [name for name in OPENCV_NAMES if not hasattr(cv2, name)]
+    if not missing:
+        return None
+    where = getattr(cv2, "__file__", None) or ", ".join(getattr(cv2, "__path__", []))
+    return (f"OpenCV is broken: the cv2 package ({where}) has no {', '.join(missing)}, "
+            + OPENCV_FIX)
+
+
+def native_path(filename):
+    """filename (a str) as a name of this system's files; says so when it changes it. A
+    name written with Windows's separators ('.\\out\\rendered_image', as the 2025-26
+    handout has it) means the same folders on Linux and macOS, where a backslash is no
+    separator but part of a file's name."""
+    name = str(filename)
+    if os.sep == "/" and "\\" in name:
+        native = name.replace("\\", "/")
+        print(f"PyRT: {name!r} is written with Windows's separators; on this system it is "
+              f"{native!r}", file=sys.stderr)
+        return native
+    return name
+
+
 def write_image_files(image, full_filename, tonemap=True):
-    """Writes full_filename + '.png' (display_image), '.npy' (the linear float image) and
-    '.hdr' (Radiance HDR, float32, in OpenCV's BGR order); creates the folder if needed."""
-    base = Path(full_filename)
+    """Writes full_filename + '.npy' (the linear float image), '.png' (display_image) and
+    '.hdr' (Radiance HDR, float32, in OpenCV's BGR order); creates the folder if needed.
+    Returns the path of the PNG."""
+    base = Path(native_path(full_filename))
     base.parent.mkdir(parents=True, exist_ok=True)
-    # The linear files are written on a second thread meanwhile: the encoders, numpy's
-    # arithmetic and the writes all run without holding Python's global lock.
-    with ThreadPoolExecutor(1) as pool:
-        linear = pool.submit(_write_linear_files, image, base)
-        display = display_image(image, tonemap)
-        # 8 bits as matplotlib makes them from floats, floor(255 v), written with zlib's
-        # fastest level: a slightly larger file, written sooner.
-        pixels = np.multiply(display, 255.0, out=display).astype(np.uint8)
-        write_atomically(_with_suffix(base, ".png"), lambda f: plt.imsave(
-            f, pixels, format="png", pil_kwargs={"compress_level": 1}))
-        linear.result()
+    npy = _with_suffix(base, ".npy")
+    write_atomically(npy, lambda f: np.save(f, image))
+    try:
+        problem = opencv_problem()
+        if problem:
+            raise RuntimeError(f"Scene.save_image: {problem}")
+        # The HDR file is written on a second thread meanwhile: the encoders, numpy's
+        # arithmetic and the writes all run without holding Python's global lock.
+        with ThreadPoolExecutor(1) as pool:
+            hdr = pool.submit(_write_hdr_file, image, base)
+            display = display_image(image, tonemap)
+            # 8 bits as matplotlib makes them from floats, floor(255 v), written with
+            # zlib's fastest level: a slightly larger file, written sooner.
+            pixels = np.multiply(display, 255.0, out=display).astype(np.uint8)
+            png = _with_suffix(base, ".png")
+            write_atomically(png, lambda f: plt.imsave(
+                f, pixels, format="png", pil_kwargs={"compress_level": 1}))
+            hdr.result()
+    except Exception:
+        print(f"PyRT: the image is saved in {npy.absolute()} (np.load reads it), but the "
+              "PNG or HDR file could not be written:", file=sys.stderr)
+        raise
+    return png
 
 
-def _write_linear_files(image, base):
-    """Writes the .npy and .hdr files of the linear image."""
+def _write_hdr_file(image, base):
+    """Writes the .hdr file of the linear image."""
     # Single precision, as the HDR format holds it: larger values are its largest.
     largest = np.finfo(np.float32).max
     ok, hdr = cv2.imencode(".hdr", np.clip(image[:, :, ::-1], -largest, largest).astype(
@@ -95,7 +151,6 @@ def _write_linear_files(image, base):
     if not ok:
         raise RuntimeError("Scene.save_image: OpenCV could not encode the HDR image")
     write_atomically(_with_suffix(base, ".hdr"), lambda f: f.write(hdr))
-    write_atomically(_with_suffix(base, ".npy"), lambda f: np.save(f, image))
 
 
 def _with_suffix(base, suffix):

@@ -11,6 +11,7 @@ pixel, the progress bar, checks) lives in PyRT_Rendering.py and the modules it u
 from PyRT_Common import *
 from PyRT_Common import __all__ as _common_names, _restore_state, is_number
 import PyRT_Explain
+from PyRT_Images import native_path
 # FRAMEWORK ONLY BEGIN
 from PyRT_Rendering import check_render, rendered_blocks
 from PyRT_Sampling import ADAPTIVE_TOLERANCE, not_a_color, sampled_row
@@ -39,7 +40,8 @@ class Integrator(ABC):
     tonemap = True  # the PNG goes through the course's tonemapper (see Scene.save_image)
 
     def __init__(self, filename_, experiment_name=""):
-        self.filename = filename_ + experiment_name
+        # '.\\out\\image' (the 2025-26 handout's) names the folder out on every system
+        self.filename = native_path(filename_ + experiment_name)
         self.scene = None
 
     def get_filename(self):
@@ -95,7 +97,9 @@ class Integrator(ABC):
         with rendered_blocks(self, workers, sampling, progress) as blocks:
             for y0, rows in blocks:  # consecutive rows, in any order: y0, y0 + 1, ...
                 scene.rendered_image[y0:y0 + len(rows)] = rows
-        scene.save_image(self.get_filename(), tonemap=self.tonemap)
+        png = scene.save_image(self.get_filename(), tonemap=self.tonemap)
+        # in full: a relative name is relative to the folder the script was started from
+        print(f"Saved {png.absolute()} (and .npy, .hdr)")
         sampling.report(self)
 
     def render_row(self, y, samples_per_pixel=1):

@@ -21,6 +21,7 @@ from tqdm import tqdm
 
 from PyRT_Acceleration import accelerated
 from PyRT_Common import is_number
+from PyRT_Images import opencv_problem
 from PyRT_Sampling import ADAPTIVE_TOLERANCE, sampling_plan
 from PyRT_Workers import render_blocks
 
@@ -50,6 +51,9 @@ def check_render(integrator, workers, samples_per_pixel, adaptive=False,
     if workers is not None:
         workers = _check_count("workers", workers, "None (all cores) or a whole number >= 1")
     sampling = sampling_plan(integrator, samples, adaptive, tolerance)
+    problem = opencv_problem()
+    if problem:  # or the render would be done, and its PNG not written
+        raise RuntimeError(f"{name}.render: {problem}")
     _check_writable(Path(integrator.get_filename()).resolve().parent)
     shape = (scene.camera.height, scene.camera.width, 3)
     if scene.rendered_image is None or scene.rendered_image.shape != shape:

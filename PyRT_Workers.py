@@ -28,6 +28,10 @@ from PyRT_Sampling import render_block
 # which takes longer. This process renders meanwhile, so a worker that starts late only
 # takes fewer rows.
 PARALLEL_MIN_SECONDS = {"fork": 0.2, "spawn": 2.0, "forkserver": 2.0}
+# The environment variable that chooses how worker processes start, one of
+# multiprocessing's start methods ("fork", "spawn", "forkserver"); the tests use it to run
+# under each. Unset: see start_method.
+START_METHOD_VARIABLE = "PYRT_START_METHOD"
 
 
 def render_blocks(integrator, height, rows, workers, seconds=None):
@@ -60,8 +64,30 @@ def render_blocks(integrator, height, rows, workers, seconds=None):
 def worker_count(seconds):
     """The processes for rows that one process would render in `seconds`: every usable
     core when the render is long enough for workers to pay off, else 1."""
-    method = multiprocessing.get_context().get_start_method()
-    return usable_cores() if seconds > PARALLEL_MIN_SECONDS[method] else 1
+    return usable_cores() if seconds > PARALLEL_MIN_SECONDS[start_method()] else 1
+
+
+def start_method():
+    """How worker processes start: PYRT_START_METHOD when set, else the method the script
+    set with multiprocessing.set_start_method, else the system's default; but from Python
+    3.12 on, 'forkserver' where these give 'fork'."""
+    chosen = os.environ.get(START_METHOD_VARIABLE)
+    if chosen:
+        methods = multiprocessing.get_all_start_methods()
+        if chosen not in methods:
+            raise ValueError(f"{START_METHOD_VARIABLE}={chosen!r}: this system's start "
+                             "methods are " + ", ".join(methods))
+        return chosen
+    # the first of all start methods is the system's default
+    chosen = (multiprocessing.get_start_method(allow_none=True)
+              or multiprocessing.get_all_start_methods()[0])
+    # numpy's and OpenCV's thread pools make the process multi-threaded, and a forked
+    # child of such a process may deadlock on a lock a thread held: Python 3.12 warns of
+    # it at each fork, and Python 3.14 makes forkserver Linux's default. (A method that
+    # reads 'fork' may be no one's choice: tqdm, for one, fixes the default as it starts.)
+    if chosen == "fork" and sys.version_info >= (3, 12):
+        return "forkserver"
+    return chosen
 
 
 def _render_with_workers(camera, blocks, rows, count, payload, renderer):
@@ -74,7 +100,7 @@ def _render_with_workers(camera, blocks, rows, count, payload, renderer):
     flag per finished block: no pixels travel through pipes, and no process waits for
     another to hand out work. Each worker sends one message as it stops: None, or the
     error that stopped it."""
-    mp = multiprocessing.get_context()
+    mp = multiprocessing.get_context(start_method())
     shared = _SharedImage(mp, (camera.height, camera.width, rows.channels), len(blocks))
     unreported = dict(enumerate(blocks))
     workers = []  # (process, receiving end of its pipe)

@@ -21,13 +21,17 @@ import shutil
 import sys
 import tempfile
 import time
-import tomllib
 import zipfile
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
 from tqdm import tqdm
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # tomllib came with Python 3.11; tomli is the same reader, for Python 3.10
+    import tomli as tomllib
 
 import course_feedback
 import course_isolation
@@ -225,6 +229,8 @@ def grade_steps(submission, template, scratch, config, server):
         if result is None:
             verdict.update(passed=False, reason=why)
         else:
+            # the system's doing, not the student's: grade_submission takes it out
+            verdict["limits_not_set"] = result["limits_not_set"]
             verdict["checks"] = [_kept_images(check, step, images)
                                  for check in result["checks"]]
             failed = [check for check in verdict["checks"] if not check["passed"]]
@@ -281,6 +287,8 @@ def grade_submission(submission, template, results, config, kit, servers, isolat
                                          dir=server.confinement.cell) as scratch:
             scratch = Path(scratch)
             steps = grade_steps(submission, template, scratch, config, server)
+            limits_not_set = sorted({line for step in steps
+                                     for line in step.pop("limits_not_set", ())})
             record = {
                 "submission": submission.name,
                 "fingerprint": fingerprint,
@@ -292,6 +300,7 @@ def grade_submission(submission, template, results, config, kit, servers, isolat
                 "total": sum(step["points"] for step in steps),
                 "max_total": sum(config.points.values()),
                 "seconds": round(time.monotonic() - start, 2),
+                "limits_not_set": limits_not_set,
             }
             folder = results / submission.name
             if folder.exists():
@@ -345,20 +354,29 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
     todo = [submission for submission in submissions if submission.name not in records]
     jobs = min(jobs or os.cpu_count() or 1, len(todo)) or 1
     servers = queue.Queue()
-    with tempfile.TemporaryDirectory(prefix="pyrt-handout-") as template, \
-            ThreadPoolExecutor(max_workers=jobs) as pool:
+    with tempfile.TemporaryDirectory(prefix="pyrt-handout-") as template:
         template = course_kit.write_handout(Path(template) / "handout")
         try:
             cores = course_isolation.cores()
             for index in range(jobs if todo else 0):
                 servers.put(course_isolation.StepServer(
                     cores[index % len(cores)], course_sandbox.confinement(isolation)))
-            running = [pool.submit(grade_submission, submission, template, results, config,
-                                   kit, servers, isolation) for submission in todo]
-            for done in tqdm(as_completed(running), total=len(running), unit="submission",
-                             desc="grading", disable=not progress or not running):
-                record = done.result()
-                records[record["submission"]] = record
+            # The pool ends before the servers close: a submission still being graded
+            # gives its server back first, and one not started yet never waits for one
+            with ThreadPoolExecutor(max_workers=jobs) as pool:
+                running = [pool.submit(grade_submission, submission, template, results,
+                                       config, kit, servers, isolation)
+                           for submission in todo]
+                try:
+                    for done in tqdm(as_completed(running), total=len(running),
+                                     unit="submission", desc="grading",
+                                     disable=not progress or not running):
+                        record = done.result()
+                        records[record["submission"]] = record
+                except BaseException:
+                    for future in running:
+                        future.cancel()
+                    raise
         finally:
             while not servers.empty():
                 server = servers.get()
@@ -366,10 +384,19 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
                 course_sandbox.close_confinement(server.confinement)
     ordered = [records[submission.name] for submission in submissions]
     course_feedback.write_grades(ordered, results / "grades.csv", REASON_LENGTH)
+    limits_not_set = sorted({line for record in ordered
+                             for line in record.get("limits_not_set", ())})
+    if limits_not_set:
+        print("course_kit.py grade: this system refused some limits of a step's process, "
+              "so the steps ran without them (no grade suffers for it): "
+              + "; ".join(limits_not_set), file=sys.stderr)
     return ordered
 
 
 def main(args):
+    unsupported = course_isolation.unsupported()
+    if unsupported:
+        sys.exit(f"course_kit.py grade: {unsupported}")
     try:
         config = load_config(args.config or CONFIG)
         if args.jobs is not None and args.jobs < 1:

@@ -20,9 +20,9 @@ Before the student's code is imported, the step's process
   own libraries,
 - installs an audit hook that refuses, and notes, every write outside the working copy or
   into its checks (tests/) and every start of another process.
-At the end it writes the checks' verdicts and the refusals as JSON to the result file,
-outside the working copy. A process that ends before that (os._exit, a crash, a limit)
-leaves no result, and the grader says why.
+At the end it writes the checks' verdicts, the refusals and the limits the system would
+not set as JSON to the result file, outside the working copy. A process that ends before
+that (os._exit, a crash, a limit) leaves no result, and the grader says why.
 
 This keeps a submission from disturbing the others by accident. It is no security
 sandbox: code that sets out to escape can (see docs/course-kit.md). A Confinement adds
@@ -33,7 +33,6 @@ when it ends.
 import argparse
 import json
 import os
-import resource
 import signal
 import subprocess
 import sys
@@ -42,6 +41,11 @@ import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
+
+try:
+    import resource
+except ImportError:  # Windows: no process limits, and no fork either (see unsupported)
+    resource = None
 
 # What every course module imports, loaded once by the step server
 PRELOADED = ("numpy", "cv2", "matplotlib.pyplot")
@@ -67,14 +71,23 @@ PR_SET_CHILD_SUBREAPER, PR_SET_NO_NEW_PRIVS = 36, 38  # Linux's prctl options
 # ------------------------------------------------------------------------------------------
 def set_limits(limits):
     """Lowers this process's limits: processor time, address space, the size of any file
-    it writes (its output included), no core files."""
+    it writes (its output included), no core files. Returns a line for each limit that
+    the system refused (macOS often refuses one of the address space): the step runs
+    without it, and the grader tells the teaching assistant."""
     cpu = int(limits["cpu_seconds"])
-    resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
     memory = int(limits["memory_mib"]) * 1024 * 1024
-    resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
     output = int(limits["output_kib"]) * 1024
-    resource.setrlimit(resource.RLIMIT_FSIZE, (output, output))
-    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    refused = []
+    for setting, name, values in (
+            (f"cpu_seconds = {cpu}", "RLIMIT_CPU", (cpu, cpu + 1)),
+            (f"memory_mib = {limits['memory_mib']}", "RLIMIT_AS", (memory, memory)),
+            (f"output_kib = {limits['output_kib']}", "RLIMIT_FSIZE", (output, output)),
+            ("no core files", "RLIMIT_CORE", (0, 0))):
+        try:
+            resource.setrlimit(getattr(resource, name), values)
+        except (ValueError, OSError) as error:
+            refused.append(f"{setting} ({name}: {type(error).__name__}: {error})")
+    return refused
 
 
 def guard(workdir, refused):
@@ -152,7 +165,7 @@ def step_process(workdir, step, result_path, log_path, limits, user=None, proces
     signal.signal(signal.SIGXFSZ, signal.SIG_DFL)  # Python ignores it: a write would fail
     result = open(result_path, "w", encoding="utf-8")
     become(user, processes)
-    set_limits(limits)
+    limits_not_set = set_limits(limits)
     os.chdir(workdir)
     sys.path[:] = [workdir, os.path.join(workdir, "tests")] + _python_paths()
     import practice1_checks
@@ -165,7 +178,7 @@ def step_process(workdir, step, result_path, log_path, limits, user=None, proces
                            "images": {kind: str(path) for kind, path in check.images.items()},
                            "story": check.story, "story_pixel": list(check.story_pixel)}
                           for check in checks],
-               "refused": refused}, result)
+               "refused": refused, "limits_not_set": limits_not_set}, result)
     result.close()
 
 
@@ -254,6 +267,19 @@ def _wait(pid, seconds):
 # ------------------------------------------------------------------------------------------
 # In the grader
 # ------------------------------------------------------------------------------------------
+def unsupported():
+    """Why the grader cannot run on this system, in one sentence, or None when it can."""
+    if resource is None or not hasattr(os, "fork"):
+        return ("the grader runs on Linux, macOS, WSL or Gradescope: it needs process "
+                "limits (the resource module) and os.fork, which this system lacks (the "
+                "handout and its checks run anywhere)")
+    return None
+
+
+# What a step server runs: this file (the tests run one that changes the system first)
+SERVER_SCRIPT = Path(__file__).resolve()
+
+
 @dataclass(frozen=True)
 class Confinement:
     """What confines a step server and its steps besides this module's guard (chosen by
@@ -286,12 +312,14 @@ class StepServer:
         options += ["--sweep"] if confinement.sweep else []
         self.confinement = confinement
         self.process = subprocess.Popen(
-            [*confinement.wrapper, sys.executable, "-I", "-B",
-             str(Path(__file__).resolve()), *options],
+            [*confinement.wrapper, sys.executable, "-I", "-B", str(SERVER_SCRIPT), *options],
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=environment, text=True)
 
     def close(self):
-        self.process.stdin.close()
+        try:
+            self.process.stdin.close()
+        except BrokenPipeError:  # the server has ended already: nothing is left to say
+            pass
         self.process.wait()
 
     def run_step(self, workdir, scratch, step, limits):
@@ -302,9 +330,12 @@ class StepServer:
         log_path.write_bytes(b"")
         request = {"workdir": str(workdir), "step": step, "result": str(result_path),
                    "log": str(log_path), "limits": limits}
-        self.process.stdin.write(json.dumps(request) + "\n")
-        self.process.stdin.flush()
-        answer = self.process.stdout.readline()
+        try:
+            self.process.stdin.write(json.dumps(request) + "\n")
+            self.process.stdin.flush()
+            answer = self.process.stdout.readline()
+        except BrokenPipeError:
+            answer = ""
         if not answer:
             raise RuntimeError("the grader's step server ended unexpectedly")
         answer = json.loads(answer)
@@ -341,11 +372,16 @@ def cores():
     return [None]
 
 
-if __name__ == "__main__":
+def main(argv=None):
+    """The step server's command line: serve with the options StepServer gives it."""
     parser = argparse.ArgumentParser(description="The step server (see the docstring).")
     parser.add_argument("--core", type=int)
     parser.add_argument("--user", type=int)
     parser.add_argument("--processes", type=int)
     parser.add_argument("--sweep", action="store_true")
-    arguments = parser.parse_args()
+    arguments = parser.parse_args(argv)
     serve(arguments.core, arguments.user, arguments.processes, arguments.sweep)
+
+
+if __name__ == "__main__":
+    main()

@@ -4,14 +4,13 @@ A plain run of the tests, CI's included, draws the same property-test examples e
 time (the profile "repeatable", derandomized): it cannot fail by chance.
 tests/hunt_flaky.py sets PYRT_HYPOTHESIS_PROFILE=hunt, which draws new examples from each
 run's --hypothesis-seed."""
-import multiprocessing
 import os
 
 import pytest
 from hypothesis import settings
 
 import PyRT_Workers
-from helpers import APP, run_python, wait_for_file
+from helpers import APP, HeldBackWorker, run_python, wait_for_file
 
 settings.register_profile("repeatable", derandomize=True)
 settings.register_profile("hunt", derandomize=False)
@@ -38,33 +37,23 @@ def worker_first(monkeypatch, tmp_path):
     raise_in_worker = (exception class, arguments): the worker raises that exception in its
     first block, once it has rendered the rows and left the marker: as an error in
     compute_color does, it leaves the block unfinished. interrupt: this process is stopped
-    with Ctrl+C after its first block. Forked workers inherit the patched functions."""
+    with Ctrl+C after its first block. The worker's side is a HeldBackWorker (helpers.py),
+    which reaches workers of every start method."""
     def install(raise_in_worker=None, interrupt=False):
         marker = tmp_path / "worker_rendered"
         taken = tmp_path / "this_process_took_a_block"
-        render_block, finish = PyRT_Workers.render_block, PyRT_Workers._SharedImage.finish
+        render_block = PyRT_Workers.render_block
 
-        def finish_and_mark(shared, i):  # only worker processes finish blocks
-            finish(shared, i)
-            marker.touch()
-
-        def held_back(integrator, y0, y1, samples):
-            in_worker = multiprocessing.parent_process() is not None
-            if in_worker:  # else it could take every block before this process takes one
-                wait_for_file(taken)
-            else:
-                taken.touch()
-                wait_for_file(marker)
+        def held_back(integrator, y0, y1, samples):  # only this process renders here
+            taken.touch()
+            wait_for_file(marker)  # else it could take every block before a worker starts
             rows = render_block(integrator, y0, y1, samples)
-            if in_worker and raise_in_worker:
-                marker.touch()
-                error_class, arguments = raise_in_worker
-                raise error_class(*arguments)
-            if interrupt and not in_worker:
+            if interrupt:
                 raise KeyboardInterrupt
             return rows
 
-        monkeypatch.setattr(PyRT_Workers._SharedImage, "finish", finish_and_mark)
         monkeypatch.setattr(PyRT_Workers, "render_block", held_back)
+        monkeypatch.setattr(PyRT_Workers, "_worker",
+                            HeldBackWorker(str(marker), str(taken), raise_in_worker))
         return marker
     return install

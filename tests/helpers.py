@@ -16,6 +16,7 @@ import numpy as np
 
 from AppRenderer import cornell_box_scene
 import PyRT_Acceleration
+import PyRT_Workers
 from PyRT_Core import *
 from PyRT_Integrators import *
 
@@ -181,6 +182,45 @@ def wait_for_file(path, seconds=60):
     deadline = time.monotonic() + seconds
     while not os.path.exists(path) and time.monotonic() < deadline:
         time.sleep(0.005)
+
+
+# The worker process's functions as PyRT_Workers defines them, before any test replaces
+# them: what a HeldBackWorker runs, whether its process was forked or started afresh.
+_WORKER = PyRT_Workers._worker
+_RENDER_BLOCK = PyRT_Workers.render_block
+_FINISH = PyRT_Workers._SharedImage.finish
+
+
+class HeldBackWorker:
+    """PyRT_Workers._worker holding back its first block until the main process has taken
+    one (the file `taken` exists), and leaving the file `marker` once it has finished a
+    block; raise_in_worker = (exception class, arguments): it raises that exception in
+    its first block instead, once it has rendered the rows and left the marker. The
+    worker_first fixture (conftest.py) installs it. It is an object that pickle sends to
+    the worker process, so it reaches workers of every start method (spawned ones import
+    PyRT_Workers afresh, without the test's changes)."""
+
+    def __init__(self, marker, taken, raise_in_worker=None):
+        self.marker, self.taken, self.raise_in_worker = marker, taken, raise_in_worker
+
+    def __call__(self, *args):
+        def finish_and_mark(shared, i):
+            _FINISH(shared, i)
+            Path(self.marker).touch()
+
+        def held_back(integrator, y0, y1, rows):
+            wait_for_file(self.taken)
+            block = _RENDER_BLOCK(integrator, y0, y1, rows)
+            if self.raise_in_worker:  # as an error in compute_color: the block unfinished
+                Path(self.marker).touch()
+                error_class, arguments = self.raise_in_worker
+                raise error_class(*arguments)
+            return block
+
+        # This is the worker's own process, which ends with the render.
+        PyRT_Workers.render_block = held_back
+        PyRT_Workers._SharedImage.finish = finish_and_mark
+        _WORKER(*args)
 
 
 def image_point(ray, camera):

@@ -144,8 +144,10 @@ def main(argv=None):
                   for path in sorted(TESTS.glob("test_*.py"))]
     else:
         groups = [pytest_args]
-    load = [multiprocessing.Process(target=keep_busy, daemon=True)
-            for _ in range(options.load)]
+    # spawned: a fork of this process, multi-threaded when the tests run it, may deadlock
+    # (Python 3.12 and later warn of it)
+    spawn = multiprocessing.get_context("spawn")
+    load = [spawn.Process(target=keep_busy, daemon=True) for _ in range(options.load)]
     for process in load:
         process.start()
     print(f"{options.runs} run(s) from seed {first}, {options.load} busy process(es) "

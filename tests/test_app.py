@@ -209,14 +209,14 @@ def test_sphere_scene_refuses_a_missing_environment_map_naming_its_path(tmp_path
 def test_a_2025_26_student_script_runs_unchanged_and_renders_figure_3(tmp_path):
     # tests/student/render_2025_26.py imports sphere_scene, builds its rays with
     # Ray(direction=...) in its own loop over x and then y, and saves to the handout's
-    # '.\\out\\' + 'rendered_image', which names the folder out on Windows and, on Linux
-    # and macOS, a file of the current folder whose name holds the backslashes. Either
-    # way the script reads its PNG back by the same name.
+    # '.\\out\\' + 'rendered_image', which names the folder out on Windows, and on Linux
+    # and macOS too: there get_filename() gives it with their separators, so that the
+    # script reads its PNG back by the same name.
     shutil.copy(REPO / "tests" / "student" / "render_2025_26.py", tmp_path)
     write_env_map(tmp_path / "env_maps" / "arch_nozero.hdr")
     result = run_python(["render_2025_26.py"], cwd=tmp_path)
     assert result.returncode == 0, result.stderr
-    name = ".\\out\\rendered_image_Intersection.png"  # DIRECTORY + FILENAME + suffix
+    name = "./out/rendered_image_Intersection.png"  # DIRECTORY + FILENAME + suffix
     assert f"Read back {name}: (500, 500, 3)" in result.stdout
     assert "Progress: 100%" in result.stdout
     assert compare_with_reference(tmp_path / name, "figure3_intersection").matches
@@ -792,7 +792,7 @@ def test_render_renders_once_with_one_centre_ray_per_pixel_and_says_where_the_im
             for call in render_calls] == [(None, 1, False)]
     assert png == str(tmp_path / "img_Lazy.png") and Path(png).is_file()
     assert capsys.readouterr().out.splitlines() == [
-        "Rendering time: 1.25 s", f"Saved {png} (and .npy, .hdr)"]
+        f"Saved {png} (and .npy, .hdr)", "Rendering time: 1.25 s"]
 
 
 @pytest.mark.parametrize("options, tolerance", [

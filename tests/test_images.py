@@ -144,6 +144,97 @@ def test_save_that_cannot_create_its_file_reports_that_error_alone(tmp_path, mon
 
 
 # ------------------------------------------------------------------------------------------
+# A broken OpenCV, and file names with Windows's separators
+# ------------------------------------------------------------------------------------------
+def empty_cv2():
+    """cv2 as it is left when one of opencv-python and opencv-python-headless was
+    uninstalled while both were installed: a package with nothing in it."""
+    module = type(os)("cv2")
+    module.__path__ = ["/site-packages/cv2"]
+    return module
+
+
+def test_installed_opencv_has_everything_pyrt_uses():
+    assert PyRT_Images.opencv_problem() is None
+
+
+def test_an_empty_cv2_is_named_with_what_it_lacks_and_the_command_that_fixes_it(
+        monkeypatch):
+    monkeypatch.setattr(PyRT_Images, "cv2", empty_cv2())
+    assert PyRT_Images.opencv_problem() == (
+        "OpenCV is broken: the cv2 package (/site-packages/cv2) has no createTonemap, "
+        "imencode, imread, cvtColor, utils, as happens when one of opencv-python and "
+        "opencv-python-headless is uninstalled while both are installed. Fix it with\n"
+        "    pip install --force-reinstall opencv-python-headless\n"
+        "(or opencv-python, which also has OpenCV's windows)")
+
+
+def test_a_save_that_opencv_fails_keeps_the_linear_image_and_names_it(tmp_path, monkeypatch,
+                                                                      capsys):
+    # as the handout's render() saves: after the whole render
+    monkeypatch.setattr(PyRT_Images, "cv2", empty_cv2())
+    image = sample_image()
+    with pytest.raises(RuntimeError, match=r"^Scene\.save_image: OpenCV is broken: .* Fix it "
+                                           r"with\n    pip install --force-reinstall "):
+        scene_with_image(image).save_image(str(tmp_path / "picture"))
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["picture.npy"]
+    np.testing.assert_array_equal(np.load(tmp_path / "picture.npy"), image)
+    assert capsys.readouterr().err == (
+        f"PyRT: the image is saved in {tmp_path / 'picture.npy'} (np.load reads it), but "
+        "the PNG or HDR file could not be written:\n")
+
+
+def test_with_an_empty_cv2_package_first_on_the_path_render_stops_before_it_starts(
+        tmp_path):
+    # a real package, found by import before the installed OpenCV
+    (tmp_path / "fake" / "cv2").mkdir(parents=True)
+    (tmp_path / "fake" / "cv2" / "__init__.py").write_text("")
+    script = ("import sys; sys.path.insert(0, 'fake')\n"
+              "from AppRenderer import sphere_test_scene\n"
+              "from PyRT_Integrators import LazyIntegrator\n"
+              "integrator = LazyIntegrator('out/image')\n"
+              "integrator.add_scene(sphere_test_scene(width=4, height=4))\n"
+              "integrator.render(progress=False)\n")
+    result = run_python(["-c", script], tmp_path)
+    assert result.returncode == 1
+    assert result.stderr.endswith(
+        "RuntimeError: LazyIntegrator.render: OpenCV is broken: the cv2 package ("
+        f"{tmp_path / 'fake' / 'cv2' / '__init__.py'}) has no createTonemap, imencode, "
+        "imread, cvtColor, utils, as happens when one of opencv-python and "
+        "opencv-python-headless is uninstalled while both are installed. Fix it with\n"
+        "    pip install --force-reinstall opencv-python-headless\n"
+        "(or opencv-python, which also has OpenCV's windows)\n"), result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_without_cv2_the_course_modules_say_how_to_repair_opencv(tmp_path):
+    # as opencv-python 5 leaves it: the files both packages share are gone
+    result = run_python(["-c", "import sys; sys.modules['cv2'] = None; import PyRT_Common"],
+                        tmp_path)
+    assert result.returncode == 1
+    assert result.stderr.endswith(
+        "ImportError: PyRT needs OpenCV, and import cv2 fails (import of cv2 halted; None in "
+        "sys.modules), as happens when one of opencv-python and opencv-python-headless is "
+        "uninstalled while both are installed. Fix it with\n"
+        "    pip install --force-reinstall opencv-python-headless\n"
+        "(or opencv-python, which also has OpenCV's windows)\n"), result.stderr
+
+
+@pytest.mark.skipif(os.sep != "/", reason="a backslash separates folders here")
+def test_a_name_with_windows_separators_is_saved_where_it_means_with_a_note(
+        tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    png = scene_with_image(sample_image()).save_image(".\\out\\picture")
+    assert str(png) == "out/picture.png"
+    assert sorted(path.name for path in (tmp_path / "out").iterdir()) == [
+        "picture.hdr", "picture.npy", "picture.png"]
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["out"]
+    assert capsys.readouterr().err == (
+        "PyRT: '.\\\\out\\\\picture' is written with Windows's separators; on this system "
+        "it is './out/picture'\n")
+
+
+# ------------------------------------------------------------------------------------------
 # Tonemapping
 # ------------------------------------------------------------------------------------------
 @pytest.mark.parametrize("dtype", [np.float32, np.float64])

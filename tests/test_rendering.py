@@ -286,3 +286,12 @@ def test_render_makes_the_missing_folders_of_its_file_name(tmp_path):
     image = render_image(PixelGrey(str(tmp_path / "new" / "folders" / "img")),
                          fov90_scene(3, 2), workers=1)
     assert image[1, 2].tolist() == [0.12] * 3
+
+
+def test_render_says_in_full_where_it_saved_the_png(tmp_path, monkeypatch, capsys):
+    # a relative name is relative to the folder the script is run from, wherever it lies
+    monkeypatch.chdir(tmp_path)
+    render_image(Constant("out/img"), fov90_scene(2, 2), workers=1)
+    assert capsys.readouterr().out.splitlines() == [
+        f"Saved {tmp_path / 'out' / 'img_Constant.png'} (and .npy, .hdr)"]
+    assert (tmp_path / "out" / "img_Constant.png").is_file()

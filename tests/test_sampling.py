@@ -475,6 +475,7 @@ def test_accuracy_file_holds_the_estimate_worked_out_by_hand(tmp_path, capsys):
     assert (accuracy["pixels"], accuracy["rays"], accuracy["rays_per_pixel"]) == (6, 12, 2.0)
     assert accuracy["image_range"] == 0.0
     assert capsys.readouterr().out.splitlines() == [  # an image of range 0: no share of it
+        f"Saved {tmp_path / 'img_LeftHalf.png'} (and .npy, .hdr)",
         f"Estimated error: RMSE {rmse:.2e} of the linear image, from the spread of each "
         f"pixel's samples; saved in {tmp_path / 'img_LeftHalf_accuracy.json'}"]
 
@@ -524,6 +525,7 @@ def test_adaptive_accuracy_file_and_report_hold_the_estimate_worked_out_by_hand(
     captured = capsys.readouterr()
     assert captured.err == ""
     assert captured.out.splitlines() == [
+        f"Saved {tmp_path / 'img_Thirds.png'} (and .npy, .hdr)",
         f"Adaptive sampling: 4 of 6 pixels (66.7%) got 9 rays after their centre ray, the "
         f"others their centre ray only: 7.00 rays per pixel, where uniform sampling takes 9. "
         f"Map of the rays per pixel: {samples} (black: 1, pale yellow: 10)",
@@ -570,8 +572,8 @@ def test_image_without_a_single_number_still_gets_its_accuracy_file(tmp_path, ca
     accuracy = json.loads((tmp_path / "img_accuracy.json").read_text())
     assert accuracy["image_range"] == 0.0  # no numbers, no range
     assert math.isnan(accuracy["estimated_rmse"])
-    assert capsys.readouterr().out.startswith("Estimated error: RMSE nan of the linear image, "
-                                              "from the spread")
+    assert capsys.readouterr().out.splitlines()[1].startswith(
+        "Estimated error: RMSE nan of the linear image, from the spread")
 
 
 def test_a_render_without_estimate_or_map_removes_those_of_an_earlier_render(tmp_path):
@@ -594,8 +596,13 @@ def test_integrator_making_its_own_rows_renders_them_uniformly_and_says_why(tmp_
     assert captured.err == ("PyRT: LazyIntegrator makes its rows itself (it overrides "
                             "render_row), so adaptive sampling cannot choose its rays: every "
                             "pixel gets 4\n")
-    assert captured.out == NO_ESTIMATE
+    assert captured.out == saved(tmp_path / "img_Lazy.png") + NO_ESTIMATE
     assert not (tmp_path / "img_Lazy_accuracy.json").exists()
+
+
+def saved(png):
+    """The line render() prints once it has saved the image png."""
+    return f"Saved {png} (and .npy, .hdr)\n"
 
 
 NO_ESTIMATE = ("No error estimate: LazyIntegrator makes its rows itself (it overrides "
@@ -606,9 +613,10 @@ def test_integrator_making_its_own_rows_says_only_that_its_error_is_not_estimate
                                                                                   capfd):
     render_image(LazyIntegrator(str(tmp_path / "img")), fov90_scene(4, 2), workers=1,
                  samples_per_pixel=2)
-    assert capfd.readouterr() == (NO_ESTIMATE, "")
+    assert capfd.readouterr() == (saved(tmp_path / "img_Lazy.png") + NO_ESTIMATE, "")
     render_image(LazyIntegrator(str(tmp_path / "img")), fov90_scene(4, 2), workers=1)
-    assert capfd.readouterr() == ("", "")  # one sample per pixel: nothing to estimate
+    # one sample per pixel: nothing to estimate
+    assert capfd.readouterr() == (saved(tmp_path / "img_Lazy.png"), "")
 
 
 def test_adaptive_with_one_sample_per_pixel_says_what_adaptive_needs(tmp_path):

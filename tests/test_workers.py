@@ -1,11 +1,15 @@
-"""PyRT_Workers.py through Integrator.render(): rendering in several processes (fork
-and spawn), how the work is split, errors in worker processes and scripts without the
-main guard."""
+"""PyRT_Workers.py through Integrator.render(): rendering in several processes (fork,
+spawn and forkserver: PYRT_START_METHOD chooses for the whole suite), how the work is
+split, errors in worker processes and scripts without the main guard."""
+import contextlib
+import io
 import multiprocessing
 import os
 import pickle
+import re
 import signal
 import sys
+import warnings
 from types import SimpleNamespace
 
 import numpy as np
@@ -120,6 +124,72 @@ def test_error_that_cannot_leave_a_worker_is_raised_as_its_text(tmp_path, worker
         integrator.render(workers=2, progress=False)
 
 
+# ------------------------------------------------------------------------------------------
+# How worker processes start
+# ------------------------------------------------------------------------------------------
+def test_the_variable_chooses_how_worker_processes_start(monkeypatch):
+    for method in multiprocessing.get_all_start_methods():
+        monkeypatch.setenv("PYRT_START_METHOD", method)
+        assert PyRT_Workers.start_method() == method
+
+
+def test_a_start_method_the_system_lacks_is_refused_with_those_it_has(monkeypatch):
+    monkeypatch.setenv("PYRT_START_METHOD", "thread")
+    with pytest.raises(ValueError, match=re.escape(
+            "PYRT_START_METHOD='thread': this system's start methods are "
+            + ", ".join(multiprocessing.get_all_start_methods()))):
+        PyRT_Workers.start_method()
+
+
+@pytest.mark.parametrize("version, systems_methods, chosen", [
+    ((3, 11), ["fork", "spawn", "forkserver"], "fork"),  # Linux
+    ((3, 12), ["fork", "spawn", "forkserver"], "forkserver"),
+    ((3, 13), ["fork", "spawn", "forkserver"], "forkserver"),
+    ((3, 12), ["spawn", "fork", "forkserver"], "spawn"),  # macOS
+    ((3, 12), ["spawn"], "spawn"),  # Windows
+    ((3, 14), ["forkserver", "fork", "spawn"], "forkserver")])  # Linux, from 3.14 on
+def test_unless_chosen_workers_start_as_the_system_says_but_never_fork_from_3_12(
+        monkeypatch, version, systems_methods, chosen):
+    monkeypatch.delenv("PYRT_START_METHOD", raising=False)
+    monkeypatch.setattr(multiprocessing, "get_start_method", lambda allow_none: None)
+    monkeypatch.setattr(multiprocessing, "get_all_start_methods", lambda: systems_methods)
+    monkeypatch.setattr(PyRT_Workers, "sys", SimpleNamespace(version_info=version))
+    assert PyRT_Workers.start_method() == chosen
+
+
+@pytest.mark.parametrize("version, scripts_method, chosen", [
+    ((3, 11), "fork", "fork"), ((3, 11), "spawn", "spawn"), ((3, 13), "spawn", "spawn"),
+    ((3, 13), "fork", "forkserver")])  # or the fixed default: tqdm fixes it as it starts
+def test_the_method_a_script_set_is_kept_but_fork_from_3_12(monkeypatch, version,
+                                                             scripts_method, chosen):
+    monkeypatch.delenv("PYRT_START_METHOD", raising=False)
+    monkeypatch.setattr(multiprocessing, "get_start_method", lambda allow_none: scripts_method)
+    monkeypatch.setattr(PyRT_Workers, "sys", SimpleNamespace(version_info=version))
+    assert PyRT_Workers.start_method() == chosen
+
+
+@pytest.mark.skipif("fork" not in multiprocessing.get_all_start_methods(),
+                    reason="this system has no fork")
+def test_the_variable_chooses_fork_even_from_3_12(monkeypatch):
+    monkeypatch.setenv("PYRT_START_METHOD", "fork")
+    monkeypatch.setattr(PyRT_Workers, "sys", SimpleNamespace(version_info=(3, 13)))
+    assert PyRT_Workers.start_method() == "fork"
+
+
+@pytest.mark.skipif(os.environ.get("PYRT_START_METHOD") == "fork",
+                    reason="fork is asked for, warning included")
+def test_a_render_with_workers_starts_them_without_a_warning(tmp_path, worker_first):
+    # Python 3.12 and later warn when a multi-threaded process forks: PyRT does not
+    marker = worker_first()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        render_image(PixelGrey(str(tmp_path / "img")), fov90_scene(3, 8), workers=2)
+    assert marker.exists(), "no worker process rendered a block"
+    # (other warnings, such as a ResourceWarning of another test's garbage, may come)
+    assert [str(warning.message) for warning in caught if "fork" in str(warning.message)
+            ] == []
+
+
 def test_rows_are_cut_into_blocks_that_shrink_towards_the_end():
     # each block takes a quarter of the rows left per process, at least one row
     assert PyRT_Workers._row_blocks(0, 50, 1) == [
@@ -163,8 +233,8 @@ def run_worker(integrator, blocks, taken_before=0):
     took the first `taken_before` blocks: (the shared image, its finished flags, the
     message the worker sent, the Ctrl+C handler the worker left)."""
     camera = integrator.scene.camera
-    shared = PyRT_Workers._SharedImage(multiprocessing.get_context(),
-                                         (camera.height, camera.width, 3), len(blocks))
+    mp = multiprocessing.get_context(PyRT_Workers.start_method())
+    shared = PyRT_Workers._SharedImage(mp, (camera.height, camera.width, 3), len(blocks))
     for _ in range(taken_before):
         shared.take()
     receiver, sender = multiprocessing.Pipe(duplex=False)
@@ -423,16 +493,20 @@ def test_coverage_measurement_is_no_debugger_workers_still_render(tmp_path, capf
 
 
 def render_normal_with_two_workers(filename):
-    return render_image(NormalIntegrator(filename), sphere_test_scene(width=24, height=24),
-                        workers=2)
+    """(the image, what PyRT printed to stderr meanwhile): the processes a forkserver starts
+    do not write to the test's stderr."""
+    with contextlib.redirect_stderr(io.StringIO()) as err:
+        image = render_image(NormalIntegrator(filename),
+                             sphere_test_scene(width=24, height=24), workers=2)
+    return image, err.getvalue()
 
 
-def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_path, capfd):
+def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_path):
     # A teaching assistant may render every student's integrator in a multiprocessing.Pool,
     # whose (daemonic) workers may not start processes of their own.
-    with multiprocessing.Pool(1) as pool:
-        image = pool.apply(render_normal_with_two_workers, (str(tmp_path / "pooled"),))
-    assert capfd.readouterr().err.splitlines() == [
+    with multiprocessing.get_context(PyRT_Workers.start_method()).Pool(1) as pool:
+        image, err = pool.apply(render_normal_with_two_workers, (str(tmp_path / "pooled"),))
+    assert err.splitlines() == [
         "PyRT: rendering in one process: this process is itself a daemonic worker process "
         "(of a multiprocessing.Pool, say), which may not start processes"]
     assert np.array_equal(image, normal_image_in_one_process(tmp_path))
