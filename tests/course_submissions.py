@@ -67,9 +67,72 @@ class Fixture:
         return self.fails.get(step)
 
 
+# The course's base code: the 2023-24 edition's four modules in full, and of each other
+# edition what it changes there (data/course_base/README.md lists it), each change a
+# function of the module's 2023-24 text, or the edition's own file where it has one
+FULL_EDITION = "2023-24"
+RAY_HEADER = "# -------------------------------------------------RAY CLASS\n"
+VECTOR_HEADER = "# -------------------------------------------------VECTOR 3D CLASS\n"
+ENVIRONMENT_HEADER = "# -------------------------------------------------ENVIRONMENT MAP CLASS\n"
+LATER_PRACTICES = """
+
+# -------------------------------------------------CLASSIC MONTE CARLO INTEGRATOR (PRACTICE 3)
+class CMCIntegrator(Integrator):
+    def __init__(self, n, filename_, experiment_name=''):
+        filename_mc = filename_ + '_MC_' + str(n) + '_samples' + experiment_name
+        super().__init__(filename_mc)
+        self.n_samples = n
+
+    def compute_color(self, ray):
+        # ASSIGNMENT 3: PUT YOUR CODE HERE
+        pass
+
+
+# -------------------------------------------------BAYESIAN MONTE CARLO INTEGRATOR (PRACTICE 4)
+class BayesianMonteCarloIntegrator(Integrator):
+    def __init__(self, n, myGP, filename_, experiment_name=''):
+        filename_bmc = filename_ + '_BMC_' + str(n) + '_samples' + experiment_name
+        super().__init__(filename_bmc)
+        self.n_samples = n
+        self.myGP = myGP
+
+    def compute_color(self, ray):
+        # ASSIGNMENT 4: PUT YOUR CODE HERE
+        pass
+"""
+
+
+def _rays_first_with_arrays(common):
+    """2021-22: Ray and HitData stand before Vector3D, with numpy arrays as defaults."""
+    start, end = common.index(RAY_HEADER), common.index(ENVIRONMENT_HEADER)
+    rays = common[start:end].replace("Vector3D(0.0, 0.0, 0.0)", "np.array([0, 0, 0])")
+    rest = common[:start] + common[end:]
+    at = rest.index(VECTOR_HEADER)
+    return rest[:at] + rays + rest[at:]
+
+
+def _ambient_unset(core):
+    """2025-26: Scene.i_a is None until set_ambient."""
+    old = "        self.i_a = RGBColor(0.0, 0.0, 0.0)  # ambient intensity\n"
+    assert old in core
+    return core.replace(old, "        self.i_a = None  # ambient intensity, set with set_ambient()\n")
+
+
+EDITION_CHANGES = {
+    "2021-22": {"PyRT_Common.py": _rays_first_with_arrays},
+    "2025-26": {"PyRT_Core.py": _ambient_unset,
+                "PyRT_Integrators.py": lambda integrators: integrators + LATER_PRACTICES},
+}
+
+
 def base_text(edition, module):
     """The text of module in the course's base code of edition."""
-    return (BASES / edition / module).read_text(encoding="utf-8")
+    own = BASES / edition / module
+    if own.is_file():
+        return own.read_text(encoding="utf-8")
+    text = (BASES / FULL_EDITION / module).read_text(encoding="utf-8")
+    change = EDITION_CHANGES.get(edition, {}).get(module)
+    return change(text) if change else text
 
 
 def _stub_span(lines, owner, first_line, whole_method):
