@@ -17,7 +17,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from PyRT_Images import cv2  # OpenCV, or an ImportError that says how to repair it
+from pyrt.images import cv2  # OpenCV, or an ImportError that says how to repair it
 
 __all__ = [
     "np", "cv2", "plt", "ABC", "abstractmethod",

@@ -4,14 +4,14 @@ Scene.closest_hit and Scene.any_hit are the course's loops: every object of the 
 asked for its intersection with the ray, and the nearest hit is kept. Every intersection
 test measures t as a distance along the ray and works on the ray's unit direction, so a
 ray whose direction is not of unit length hits the same point at the same distance as its
-normalised version. (During a render, PyRT_Acceleration answers the same queries faster,
+normalised version. (During a render, pyrt.acceleration answers the same queries faster,
 with the same answers, whenever the scene is made of PyRT's own classes.)
 """
 from math import isfinite, tan
 
 from PyRT_Common import *
 from PyRT_Common import _restore_state, check_constants, is_number
-from PyRT_Images import write_image_files
+from pyrt.images import write_image_files
 
 # A ray direction whose squared length is this close to 1 is used as it is; anything else
 # is normalised first (a normalised vector is only of unit length to within rounding).
@@ -188,7 +188,7 @@ class Scene:
 
         With tonemap False the PNG shows the linear values clipped to [0, 1] (Figure 2).
         Returns the path of the PNG (a name with Windows's separators is saved where it
-        means on every system, PyRT_Images.native_path)."""
+        means on every system, pyrt.images.native_path)."""
         image = self.rendered_image
         if image is None:
             raise RuntimeError("Scene.save_image: the scene has no image yet; call "

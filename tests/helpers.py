@@ -15,8 +15,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from AppRenderer import cornell_box_scene
-import PyRT_Acceleration
-import PyRT_Workers
+import pyrt.acceleration
+import pyrt.workers
 from PyRT_Core import *
 from PyRT_Integrators import *
 
@@ -56,7 +56,7 @@ def headless_env():
     repository on the import path."""
     env = {name: value for name, value in os.environ.items() if name != "DISPLAY"}
     if env.get("MUTANT_UNDER_TEST") == "stats":
-        # mutmut's first run, which records what each test calls, needs its setup.cfg in
+        # mutmut's first run, which records what each test calls, needs its pyproject.toml in
         # the working folder; a child Python started elsewhere runs the code unmutated.
         del env["MUTANT_UNDER_TEST"]
     env["MPLBACKEND"] = "Agg"
@@ -160,9 +160,9 @@ def visible_lights(scene, hit):
     """The point lights that light the point of hit (a HitData) as PhongIntegrator decides
     it: each light in front of the surface, n . (pos - p) > 0, whose shadow_ray meets
     nothing, as (light, wi, r2), wi the unit direction to the light and r2 its squared
-    distance. The scene's own any_hit and PyRT_Acceleration's decide alike, or the test
+    distance. The scene's own any_hit and pyrt.acceleration's decide alike, or the test
     fails."""
-    fast = PyRT_Acceleration.AcceleratedQueries(scene)
+    fast = pyrt.acceleration.AcceleratedQueries(scene)
     seen = []
     for light in scene.pointLights:
         to_light = light.pos - hit.hit_point
@@ -184,21 +184,21 @@ def wait_for_file(path, seconds=60):
         time.sleep(0.005)
 
 
-# The worker process's functions as PyRT_Workers defines them, before any test replaces
+# The worker process's functions as pyrt.workers defines them, before any test replaces
 # them: what a HeldBackWorker runs, whether its process was forked or started afresh.
-_WORKER = PyRT_Workers._worker
-_RENDER_BLOCK = PyRT_Workers.render_block
-_FINISH = PyRT_Workers._SharedImage.finish
+_WORKER = pyrt.workers._worker
+_RENDER_BLOCK = pyrt.workers.render_block
+_FINISH = pyrt.workers._SharedImage.finish
 
 
 class HeldBackWorker:
-    """PyRT_Workers._worker holding back its first block until the main process has taken
+    """pyrt.workers._worker holding back its first block until the main process has taken
     one (the file `taken` exists), and leaving the file `marker` once it has finished a
     block; raise_in_worker = (exception class, arguments): it raises that exception in
     its first block instead, once it has rendered the rows and left the marker. The
     worker_first fixture (conftest.py) installs it. It is an object that pickle sends to
     the worker process, so it reaches workers of every start method (spawned ones import
-    PyRT_Workers afresh, without the test's changes)."""
+    pyrt.workers afresh, without the test's changes)."""
 
     def __init__(self, marker, taken, raise_in_worker=None):
         self.marker, self.taken, self.raise_in_worker = marker, taken, raise_in_worker
@@ -218,8 +218,8 @@ class HeldBackWorker:
             return block
 
         # This is the worker's own process, which ends with the render.
-        PyRT_Workers.render_block = held_back
-        PyRT_Workers._SharedImage.finish = finish_and_mark
+        pyrt.workers.render_block = held_back
+        pyrt.workers._SharedImage.finish = finish_and_mark
         _WORKER(*args)
 
 

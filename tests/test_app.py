@@ -21,8 +21,8 @@ from matplotlib.backend_bases import ResizeEvent
 import AppRenderer
 from AppRenderer import cornell_box_scene, sphere_test_scene
 from helpers import APP, REPO, as_tuple, render_image, rgb, run_python
-from PyRT_Compare import REFERENCE_DIR, compare_with_reference
-from PyRT_Sampling import ADAPTIVE_TOLERANCE
+from pyrt.compare import REFERENCE_DIR, compare_with_reference
+from pyrt.sampling import ADAPTIVE_TOLERANCE
 from PyRT_Core import Parallelogram, Sphere
 from PyRT_Integrators import (DepthIntegrator, IntersectionIntegrator, Integrator,
                               LazyIntegrator, NormalIntegrator, PhongIntegrator)

@@ -5,7 +5,7 @@ import cv2
 import numpy as np
 import pytest
 
-import PyRT_Acceleration
+import pyrt.acceleration
 import PyRT_Core
 from helpers import as_tuple, rgb, visible_lights
 from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, Cross, Dot, HitData, Length, Normalize,
@@ -1014,10 +1014,10 @@ def tile_hit(scene):
 
 
 def hits_anything(scene, r):
-    """any_hit as testing every object gives it, which PyRT_Acceleration's any_hit must
+    """any_hit as testing every object gives it, which pyrt.acceleration's any_hit must
     give too."""
     expected = any(obj.intersect(r).has_hit for obj in scene.object_list)
-    assert PyRT_Acceleration.AcceleratedQueries(scene).any_hit(r) is expected
+    assert pyrt.acceleration.AcceleratedQueries(scene).any_hit(r) is expected
     return expected
 
 

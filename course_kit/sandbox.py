@@ -2,7 +2,7 @@
 (bubblewrap's command line, the user of a step, the folders handed to it).
 
 Three modes; the grader takes the strongest that works here, or the one asked for:
-- "bubblewrap": each step server (course_isolation.py) runs inside bwrap (Debian and
+- "bubblewrap": each step server (course_kit/isolation.py) runs inside bwrap (Debian and
   Ubuntu package bubblewrap) with no network, its own process, IPC and host-name
   namespaces, and a file system that shows only the system's folders and Python's,
   read-only, an empty /tmp, and its cell read-write: the folder where the grader makes the
@@ -14,7 +14,7 @@ Three modes; the grader takes the strongest that works here, or the one asked fo
   process runs as a user of its own (a number that no account uses), which may write only
   its working copy, cannot read the grader's folders, and may have MAX_PROCESSES
   processes; what it leaves running is killed when the step ends.
-- "process": only what course_isolation.py does by itself: limits of time, memory and
+- "process": only what course_kit/isolation.py does by itself: limits of time, memory and
   output, and Python's audit hook.
 Under bubblewrap as root the steps run as a user of their own as well; without root,
 bubblewrap maps the grader's user into the sandbox, and the limit on processes counts
@@ -30,7 +30,7 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-import course_isolation
+import course_kit.isolation
 
 MODES = ("bubblewrap", "unprivileged user", "process")
 # The steps' users when the grader runs as root: numbers from FIRST_USER on, which no
@@ -88,7 +88,7 @@ def bubblewrap_command(cell, root=None):
     python = sorted({path for path in python if not any(
         Path(path).is_relative_to(other) for other in python + list(SYSTEM_FOLDERS)
         if other != path)})  # each once: those in a folder already shown go with it
-    server = str(Path(course_isolation.__file__).resolve())
+    server = str(Path(course_kit.isolation.__file__).resolve())
     made = {"/", "/tmp", *SYSTEM_FOLDERS}
     for path, option in [(folder, "--ro-bind") for folder in python] + [
             (server, "--ro-bind"), (str(cell), "--bind")]:
@@ -193,9 +193,9 @@ def _take_user():
 
 
 def confinement(isolation):
-    """The course_isolation.Confinement of a new step server under isolation. Its cell, if
+    """The course_kit.isolation.Confinement of a new step server under isolation. Its cell, if
     it has one, and its user are its own until close_confinement."""
-    Confinement = course_isolation.Confinement
+    Confinement = course_kit.isolation.Confinement
     if isolation.mode == "process":
         return Confinement()
     user = _take_user() if _as_root() else None

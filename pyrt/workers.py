@@ -19,8 +19,8 @@ import traceback
 
 import numpy as np
 
-from PyRT_Acceleration import accelerated, debugger_attached, plain
-from PyRT_Sampling import render_block
+from pyrt.acceleration import accelerated, debugger_attached, plain
+from pyrt.sampling import render_block
 
 # With workers=None, a render that one process would finish sooner than this stays in
 # one process: starting workers would cost more than they save. Forked workers (Linux)

@@ -17,7 +17,7 @@ on whatever your compute_color, any_hit, closest_hit and primitives do: while it
 the scene's two queries and every object's ``intersect`` are wrapped (as attributes of
 the objects themselves) by recorders that pass every call on unchanged, and afterwards
 they are taken off again. Nothing else of the scene, and nothing of the image, changes.
-PyRT_ExplainPicture.py draws the rays of a history.
+pyrt/explain_picture.py draws the rays of a history.
 """
 import math
 import numbers
@@ -180,9 +180,9 @@ def hit_record(answer) -> HitRecord:
 
 def plain_method(obj, name):
     """obj's own method `name`: an attribute of the object itself (a student may assign
-    one), unless PyRT_Acceleration put it there for a render, else its class's."""
+    one), unless pyrt.acceleration put it there for a render, else its class's."""
     own = getattr(obj, "__dict__", {}).get(name)
-    if own is not None and type(getattr(own, "__self__", None)).__module__ != "PyRT_Acceleration":
+    if own is not None and type(getattr(own, "__self__", None)).__module__ != "pyrt.acceleration":
         return own
     return getattr(type(obj), name).__get__(obj)  # an AttributeError when it has none
 

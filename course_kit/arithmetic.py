@@ -1,5 +1,5 @@
 """The course framework's own arithmetic for a ray's hit, for the seams of the students'
-checks (course_references.py).
+checks (course_kit/references.py).
 
 Students write their code on the course's base code, whose primitives compute a hit as
 below: in doubles, on d = Normalize(ray.d), with no tolerance at the edges. Away from the

@@ -13,7 +13,7 @@ computed in another order differs in its last digits), except on the seams: the 
 whose centre lies within SEAM_WIDTH of a pixel of an edge, where two surfaces (or a
 surface and the background, or light and shadow) meet. A ray there may hit either side,
 so such a pixel may also take any of the colours that the rays around its centre see, or
-that the course's own arithmetic gives its ray (course_arithmetic.py), with any of the
+that the course's own arithmetic gives its ray (course_kit/arithmetic.py), with any of the
 shadow rays students write: the crack between two walls that lets a ray through to the
 background included.
 
@@ -26,7 +26,7 @@ figure's PNG and is right; the check then adds a note saying what differs.
 When an image differs, the check says how many pixels differ and where, writes your image,
 the expected one and their difference into out/checks/<check>/, names the mistake when
 it recognises it, and tells the history of the first pixel that differs: every question
-your compute_color asked the scene there, and the answers (PyRT_Explain.py).
+your compute_color asked the scene there, and the answers (pyrt/explain.py).
 """
 import traceback
 from dataclasses import dataclass, field
@@ -87,7 +87,7 @@ STEPS = {
     "1.3": ("depth", "normal"),
     "1.4": ("phong_sphere", "phong_cornell"),
 }
-# The mistakes whose images course_references.py renders with the finished framework for
+# The mistakes whose images course_kit/references.py renders with the finished framework for
 # the expected data, by image; every ray-traced image also has "corner_rays"
 RENDERED_MISTAKES = {
     "depth": ("unclamped_depth",),
@@ -487,11 +487,11 @@ def _check_image(check, folder):
 def tell_first_wrong_pixel(check, integrator, wrong, expected):
     """Sets check.story to the history of the first wrong pixel (in reading order) as the
     student's integrator tells it, with the colour expected there. A story that cannot be
-    told (no PyRT_Explain.py beside the modules, a scene it cannot read) is left out: it
+    told (no pyrt/explain.py beside the modules, a scene it cannot read) is left out: it
     never changes the verdict."""
     y, x = (int(i) for i in np.argwhere(wrong)[0])
     try:
-        from PyRT_Explain import explain_pixel
+        from pyrt.explain import explain_pixel
         history = explain_pixel(integrator, x, y)
     except Exception:
         return
@@ -505,7 +505,7 @@ def tell_first_wrong_pixel(check, integrator, wrong, expected):
 # Comparing images
 # ------------------------------------------------------------------------------------------
 def expected_data():
-    """The expected images and what goes with them (see course_references.py), as a
+    """The expected images and what goes with them (see course_kit/references.py), as a
     dict of arrays."""
     with np.load(EXPECTED) as data:
         return {key: data[key] for key in data.files}

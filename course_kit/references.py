@@ -1,5 +1,5 @@
 """The expected data of the students' checks, rendered by the finished framework into
-kit/checks/expected/practice1.npz (by `python course_kit.py expected`, and only on purpose: when
+course_kit/checks/expected/practice1.npz (by `python -m course_kit expected`, and only on purpose: when
 the framework's images change by an intended change, with the reason in the commit).
 
 For each image of practice1_checks.IMAGES, at practice1_checks.SIZE pixels:
@@ -7,7 +7,7 @@ For each image of practice1_checks.IMAGES, at practice1_checks.SIZE pixels:
 - <name>.seam_pixels and <name>.seam_colors: the seams, (y, x) of each pixel whose colour
   changes when its ray leaves the pixel's centre by SEAM_WIDTH of a pixel (up, down, left
   or right), or, in a Phong image, when its shadow rays ignore the first EPSILON of their
-  way as the course's Ray does, or when the course's own arithmetic (course_arithmetic.py)
+  way as the course's Ray does, or when the course's own arithmetic (course_kit/arithmetic.py)
   traces its ray, with each shadow ray that students write (SHADOW_RAYS); and for each
   such pixel the colours of all those rays;
 - <name>.mistake.<mistake>: the image of a known mistake (practice1_checks.LIKELY): rays
@@ -25,12 +25,11 @@ from pathlib import Path
 
 import numpy as np
 
-REPO = Path(__file__).resolve().parent
-sys.path.insert(0, str(REPO / "kit" / "checks"))
+sys.path.insert(0, str(Path(__file__).resolve().parent / "checks"))
 
 import practice1_checks as checks  # noqa: E402  (found through the line above)
 import PyRT_Integrators  # noqa: E402
-from course_arithmetic import with_course_arithmetic  # noqa: E402
+from course_kit.arithmetic import with_course_arithmetic  # noqa: E402
 from PyRT_Common import BLACK, EPSILON, Length, Ray, RGBColor  # noqa: E402
 
 # The rays of a seam pixel's alternatives: its centre moved by SEAM_WIDTH of a pixel
@@ -192,7 +191,7 @@ def seams(name, expected, folder):
 
 
 def expected_arrays():
-    """Every array of kit/checks/expected/practice1.npz, by key."""
+    """Every array of course_kit/checks/expected/practice1.npz, by key."""
     arrays = {}
     with tempfile.TemporaryDirectory() as folder:
         for name, info in checks.IMAGES.items():
@@ -227,7 +226,7 @@ def npz_bytes(arrays):
 
 
 def framework_story(name, x, y):
-    """The finished framework's history of pixel (x, y) of IMAGES[name] (PyRT_Explain.py),
+    """The finished framework's history of pixel (x, y) of IMAGES[name] (pyrt/explain.py),
     as text: what the feedback page shows beside a student's story of the same pixel."""
     integrator = checks.make_integrator(name, "unused", PyRT_Integrators)
     integrator.add_scene(checks.SCENES[checks.IMAGES[name].scene]())

@@ -1,6 +1,6 @@
 """A picture of a pixel's rays: the scene's objects, the camera ray, the hit with its
 normal and each shadow ray to its light, blocked or visible, seen from the side and from
-above. It draws a PixelHistory of PyRT_Explain.py:
+above. It draws a PixelHistory of pyrt/explain.py:
 
     history = explain_pixel(integrator, 250, 400)
     save_picture(history, integrator.scene, "out/pixel_250_400.png")
@@ -15,7 +15,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle, Polygon
 
-from PyRT_Explain import PixelHistory, number, vector
+from pyrt.explain import PixelHistory, number, vector
 
 # (horizontal, vertical) components of each view, with their labels: the camera looks
 # down -z, drawn to the right in both views; from above, +x (the image's right) is down.

@@ -6,7 +6,7 @@ figure1_phong, figure2_lazy, figure3_intersection, figure4_depth, figure4_normal
 figure5_phong. `compare_with_reference` compares one image with one of them (or with any
 other image of the same size) and tells how many pixels differ and by how much:
 
-    from PyRT_Compare import compare_with_reference
+    from pyrt.compare import compare_with_reference
 
     result = compare_with_reference("out/rendered_image_Phong.png", "figure1_phong",
                                     difference_png="out/difference.png")
@@ -30,7 +30,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
-REPOSITORY = Path(__file__).resolve().parent
+REPOSITORY = Path(__file__).resolve().parent.parent  # the folder of AppRenderer.py
 REFERENCE_DIR = REPOSITORY / "references"
 REFERENCE_SIZE = 500  # the references are REFERENCE_SIZE x REFERENCE_SIZE pixels
 TOLERANCE_STEPS = 1   # differences of at most this many 8-bit steps do not count

@@ -5,8 +5,8 @@
 render around it: the checks made before any work, with messages that say what to fix
 (check_render), and the passes of a render (rendered_blocks) with their progress bar,
 the partial image saved on Ctrl+C and the report of NaN or infinite pixels. Which rays
-each pixel gets is PyRT_Sampling's; rendering on every core, PyRT_Workers'; the fast
-queries used meanwhile, PyRT_Acceleration's.
+each pixel gets is pyrt.sampling's; rendering on every core, pyrt.workers'; the fast
+queries used meanwhile, pyrt.acceleration's.
 
 Nothing here changes an image: one process or several give the same pixels, bit for bit.
 """
@@ -19,11 +19,11 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from PyRT_Acceleration import accelerated
+from pyrt.acceleration import accelerated
 from PyRT_Common import is_number
-from PyRT_Images import opencv_problem
-from PyRT_Sampling import ADAPTIVE_TOLERANCE, sampling_plan
-from PyRT_Workers import render_blocks
+from pyrt.images import opencv_problem
+from pyrt.sampling import ADAPTIVE_TOLERANCE, sampling_plan
+from pyrt.workers import render_blocks
 
 
 # ------------------------------------------------------------------------------------------
@@ -90,7 +90,7 @@ def rendered_blocks(integrator, workers, sampling, progress):
     any order, rendered by this process and by worker processes, pass after pass of
     sampling (UniformSampling or AdaptiveSampling: a later pass gives some rows again,
     better); shows a progress bar for each pass. The scene's queries are accelerated
-    meanwhile (PyRT_Acceleration), and nothing may change the scene.
+    meanwhile (pyrt.acceleration), and nothing may change the scene.
 
     On Ctrl+C it stops the workers, saves the rows stored so far in the scene's image as
     <filename>_partial and re-raises. When all is done it reports NaN or infinite pixels."""

@@ -1,12 +1,5 @@
-"""The course kit of Practice 1: the students' handout, made from this framework, and the
-grader of what they hand in.
-
-    python course_kit.py handout DIR        writes the students' base code into DIR
-    python course_kit.py grade SUBMISSIONS --out RESULTS [--jobs N] [--force] [--config F]
-                                            [--isolation MODE]
-    python course_kit.py autograder ZIP     writes Gradescope's autograder zip [--config F]
-    python course_kit.py expected           remakes the checks' expected images, on
-                                            purpose only (kit/checks/expected/)
+"""The students' handout of Practice 1, made from this framework (`python -m course_kit
+handout DIR`).
 
 The parts that students write are marked in the finished framework, each block of solution
 between two comment lines at the same indentation:
@@ -22,27 +15,26 @@ unbalanced, nested, misspelt or unknown marker stops the kit with the file and t
 
 docs/course-kit.md is the teaching assistants' guide.
 """
-import argparse
 import re
-import sys
 import textwrap
 from pathlib import Path
 from typing import NamedTuple, Optional
 
-REPO = Path(__file__).resolve().parent
-KIT = REPO / "kit"
+REPO = Path(__file__).resolve().parent.parent  # the folder of AppRenderer.py
+KIT = REPO / "course_kit"
 CHECKS = KIT / "checks"
 EXPECTED = CHECKS / "expected" / "practice1.npz"
 
 # What students write in, made from the framework by replacing the marked blocks
 COURSE_MODULES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppRenderer.py")
 # What AppRenderer.py needs besides them, shipped as it is
-SHIPPED_AS_IS = ("PyRT_Images.py", "PyRT_Compare.py", "PyRT_Explain.py",
-                 "PyRT_ExplainPicture.py", ".vscode/launch.json", ".vscode/settings.json")
-# The course's figures, which PyRT_Compare.py finds in references/
+# (pyrt/: only the part of the machinery that the handout's modules import)
+SHIPPED_AS_IS = ("pyrt/__init__.py", "pyrt/images.py", "pyrt/compare.py", "pyrt/explain.py",
+                 "pyrt/explain_picture.py", ".vscode/launch.json", ".vscode/settings.json")
+# The course's figures, which pyrt/compare.py finds in references/
 FIGURES = ("figure1_phong.png", "figure2_lazy.png", "figure3_intersection.png",
            "figure4_depth.png", "figure4_normal.png", "figure5_phong.png")
-# The students' checks: kit/checks/<name> goes to tests/<name> in the handout
+# The students' checks: course_kit/checks/<name> goes to tests/<name> in the handout
 CHECK_FILES = ("practice1_checks.py", "test_practice1.py")
 # The packages the handout needs, with the framework's version bounds
 HANDOUT_PACKAGES = ("numpy", "opencv-python-headless", "matplotlib", "pytest")
@@ -224,63 +216,3 @@ def write_handout(directory):
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_bytes(content)
     return directory
-
-
-# ------------------------------------------------------------------------------------------
-# Command line
-# ------------------------------------------------------------------------------------------
-def parse_args(argv):
-    parser = argparse.ArgumentParser(
-        prog="course_kit.py", description="The course kit of Practice 1: the students' "
-        "handout and the grader. See docs/course-kit.md.")
-    commands = parser.add_subparsers(dest="command", required=True)
-    handout = commands.add_parser("handout", help="write the students' base code into DIR")
-    handout.add_argument("directory", metavar="DIR", help="a new or empty folder")
-    grade = commands.add_parser("grade", help="grade every submission in a folder")
-    grade.add_argument("submissions", metavar="SUBMISSIONS",
-                       help="a folder of submissions, each a folder or a .zip")
-    grade.add_argument("--out", required=True, metavar="RESULTS",
-                       help="where grades.csv and a folder per submission go")
-    grade.add_argument("--jobs", type=int, default=None,
-                       help="submissions graded at once (default: one per core)")
-    grade.add_argument("--force", action="store_true",
-                       help="grade again the submissions already graded")
-    grade.add_argument("--config", default=None, metavar="FILE",
-                       help="points and limits (default: kit/grading.toml)")
-    import course_sandbox
-    course_sandbox.add_argument(grade)
-    autograder = commands.add_parser("autograder", help="write Gradescope's autograder zip")
-    autograder.add_argument("zip", metavar="ZIP", help="the zip file to write")
-    autograder.add_argument("--config", default=None, metavar="FILE",
-                            help="points, limits and visibilities (default: "
-                            "kit/grading.toml)")
-    commands.add_parser("expected", help="remake kit/checks/expected/practice1.npz from the "
-                        "finished framework (only when its images change on purpose)")
-    return parser.parse_args(argv)
-
-
-def main(argv=None):
-    args = parse_args(argv)
-    if args.command == "handout":
-        try:
-            print(f"Wrote the handout into {write_handout(args.directory)}")
-        except (MarkerError, FileExistsError) as error:
-            sys.exit(f"course_kit.py handout: {error}")
-    elif args.command == "grade":
-        import course_grader
-        return course_grader.main(args)
-    elif args.command == "autograder":
-        import course_autograder
-        try:
-            print(f"Wrote {course_autograder.write_zip(args.zip, args.config)}: upload it as "
-                  "the autograder of a Gradescope assignment (docs/course-kit.md)")
-        except (ValueError, OSError) as error:
-            sys.exit(f"course_kit.py autograder: {error}")
-    else:
-        import course_references
-        print(f"Wrote {course_references.write_expected(EXPECTED)}")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -18,7 +18,7 @@ from typing import NamedTuple
 import numpy as np
 
 from PyRT_Common import INFINITY, RGBColor, Ray, Vector3D, check_constants, is_number, plt
-from PyRT_Images import display_image, write_atomically
+from pyrt.images import display_image, write_atomically
 
 SAMPLE_SEED = 0x5079_5254  # "PyRT"
 # The default tolerance of adaptive sampling: neighbouring pixels whose colours, as the PNG

@@ -1,7 +1,7 @@
 """One step of the students' checks run on one submission's working copy, in a process of
-its own, for the grader (course_grader.py).
+its own, for the grader (course_kit/grader.py).
 
-The processes are forked by a step server, `python -I -B course_isolation.py [--core N]`
+The processes are forked by a step server, `python -I -B course_kit/isolation.py [--core N]`
 (the other options: see Confinement), that has loaded what every course module loads
 (numpy, OpenCV, matplotlib) once, so that a step's process starts at once; each is still
 new, and shares nothing with the others. A server given a core runs on that core alone,
@@ -26,7 +26,7 @@ that (os._exit, a crash, a limit) leaves no result, and the grader says why.
 
 This keeps a submission from disturbing the others by accident. It is no security
 sandbox: code that sets out to escape can (see docs/course-kit.md). A Confinement adds
-what course_sandbox.py chooses: the server run inside bubblewrap, the steps run as a user
+what course_kit/sandbox.py chooses: the server run inside bubblewrap, the steps run as a user
 of their own with a limit on their processes, and whatever a step leaves running killed
 when it ends.
 """
@@ -283,7 +283,7 @@ SERVER_SCRIPT = Path(__file__).resolve()
 @dataclass(frozen=True)
 class Confinement:
     """What confines a step server and its steps besides this module's guard (chosen by
-    course_sandbox.py): the command line the server runs inside, with its variables; the
+    course_kit/sandbox.py): the command line the server runs inside, with its variables; the
     user its steps run as and the limit on that user's processes (None: the grader's
     user, no limit); whether what a step leaves running is killed; the folder in which the
     working copies must lie (None: anywhere)."""

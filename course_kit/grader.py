@@ -1,11 +1,11 @@
-"""The grader of Practice 1: `python course_kit.py grade SUBMISSIONS --out RESULTS`.
+"""The grader of Practice 1: `python -m course_kit grade SUBMISSIONS --out RESULTS`.
 
 Every entry of SUBMISSIONS (a folder or a .zip) is one submission: the course modules it
 holds (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py, wherever they
 lie in it; the shallowest of each name counts) are copied over a fresh copy of the
-handout, and each assignment step's checks (kit/checks/practice1_checks.py, the students'
-own checks) run there in a process of their own (course_isolation.py) with limits of
-time, memory and output, isolated as course_sandbox.py chooses (bubblewrap's sandbox, an
+handout, and each assignment step's checks (course_kit/checks/practice1_checks.py, the students'
+own checks) run there in a process of their own (course_kit/isolation.py) with limits of
+time, memory and output, isolated as course_kit/sandbox.py chooses (bubblewrap's sandbox, an
 unprivileged user, or the process alone). The submissions themselves are only read.
 
 RESULTS gets grades.csv, and for each submission a folder with feedback.html, results.json
@@ -33,12 +33,12 @@ if sys.version_info >= (3, 11):
 else:  # tomllib came with Python 3.11; tomli is the same reader, for Python 3.10
     import tomli as tomllib
 
-import course_feedback
-import course_isolation
-import course_kit
-import course_sandbox
+import course_kit.feedback
+import course_kit.isolation
+import course_kit.handout
+import course_kit.sandbox
 
-CONFIG = course_kit.KIT / "grading.toml"
+CONFIG = course_kit.handout.KIT / "grading.toml"
 STEP_TITLES = {
     "1.1": "Assignment 1.1: the render loop (Lazy integrator)",
     "1.2": "Assignment 1.2: any_hit and the Intersection integrator",
@@ -61,7 +61,7 @@ REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
 @dataclass(frozen=True)
 class Config:
     """The points of each step, the limits of a step's process and Gradescope's
-    visibilities (kit/grading.toml)."""
+    visibilities (course_kit/grading.toml)."""
 
     points: dict
     limits: dict
@@ -157,7 +157,7 @@ def _shallowest(paths):
     """{module name: the shallowest of paths (PurePosixPath) with that name}."""
     chosen = {}
     for path in sorted(paths, key=lambda p: (len(p.parts), str(p))):
-        if path.name in course_kit.COURSE_MODULES:
+        if path.name in course_kit.handout.COURSE_MODULES:
             chosen.setdefault(path.name, path)
     return chosen
 
@@ -203,23 +203,26 @@ def _read_zip(submission):
 # Running the steps
 # ------------------------------------------------------------------------------------------
 def framework_machinery():
-    """The framework's modules that the handout leaves out (PyRT_Rendering.py, ...): the
-    working copies hold them too, so that the finished framework itself can be graded."""
-    shipped = set(course_kit.COURSE_MODULES) | set(course_kit.SHIPPED_AS_IS)
-    return [path for path in sorted(course_kit.REPO.glob("PyRT_*.py"))
-            if path.name not in shipped]
+    """The modules of PyRT's machinery that the handout leaves out (pyrt/rendering.py, ...),
+    as paths relative to the repository: the working copies hold them too, so that the
+    finished framework itself can be graded."""
+    shipped = set(course_kit.handout.SHIPPED_AS_IS)
+    repo = course_kit.handout.REPO
+    return [path.relative_to(repo) for path in sorted((repo / "pyrt").rglob("*.py"))
+            if path.relative_to(repo).as_posix() not in shipped]
 
 
 def grade_steps(submission, template, scratch, config, server):
     """The verdicts of every step for submission, its working copy made in scratch, its
-    steps run by server (a course_isolation.StepServer)."""
+    steps run by server (a course_kit.isolation.StepServer)."""
     workdir = scratch / "work"
     shutil.copytree(template, workdir)
     for path in framework_machinery():
-        shutil.copyfile(path, workdir / path.name)
+        (workdir / path).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(course_kit.handout.REPO / path, workdir / path)
     for name, content in submission.files.items():
         (workdir / name).write_bytes(content)
-    course_sandbox.hand_over(scratch, workdir, server.confinement.user)
+    course_kit.sandbox.hand_over(scratch, workdir, server.confinement.user)
     images = scratch / "images"
     verdicts = []
     for step, title in STEP_TITLES.items():
@@ -237,7 +240,7 @@ def grade_steps(submission, template, scratch, config, server):
             if result["refused"]:
                 reason = "refused: " + "; ".join(dict.fromkeys(result["refused"]))
             elif failed:
-                reason = course_feedback.check_reason(failed[0])
+                reason = course_kit.feedback.check_reason(failed[0])
             else:
                 reason = ""
             verdict.update(passed=not reason, reason=reason)
@@ -266,10 +269,11 @@ def kit_fingerprint(config):
     """What else decides a grade besides the submission: the handout with its checks and
     expected images, the step's process and the settings."""
     sha = hashlib.sha256()
-    for name, content in course_kit.handout_files().items():
+    for name, content in course_kit.handout.handout_files().items():
         sha.update(name.encode() + b"\0" + content + b"\0")
-    for path in framework_machinery() + [Path(course_isolation.__file__),
-                                         Path(course_sandbox.__file__)]:
+    machinery = [course_kit.handout.REPO / path for path in framework_machinery()]
+    for path in machinery + [Path(course_kit.isolation.__file__),
+                             Path(course_kit.sandbox.__file__)]:
         sha.update(path.read_bytes())
     sha.update(config.text.encode())
     return sha.hexdigest()
@@ -278,7 +282,7 @@ def kit_fingerprint(config):
 def grade_submission(submission, template, results, config, kit, servers, isolation):
     """Grades one submission and writes its folder of results; returns its record. Its
     steps run on a step server taken from the queue servers, and given back, isolated
-    as isolation (a course_sandbox.Isolation) says."""
+    as isolation (a course_kit.sandbox.Isolation) says."""
     fingerprint = hashlib.sha256((submission.digest() + kit).encode()).hexdigest()
     start = time.monotonic()
     server = servers.get()
@@ -293,7 +297,7 @@ def grade_submission(submission, template, results, config, kit, servers, isolat
                 "submission": submission.name,
                 "fingerprint": fingerprint,
                 "files": {name: "submission" if name in submission.files else "handout"
-                          for name in course_kit.COURSE_MODULES},
+                          for name in course_kit.handout.COURSE_MODULES},
                 "problems": submission.problems,
                 "isolation": isolation.mode,
                 "steps": steps,
@@ -310,13 +314,13 @@ def grade_submission(submission, template, results, config, kit, servers, isolat
                 shutil.copytree(scratch / "images", folder / "images")
     finally:
         servers.put(server)
-    course_feedback.write_submission_reports(record, folder, config.gradescope)
+    course_kit.feedback.write_submission_reports(record, folder, config.gradescope)
     return record
 
 
 def recorded(results, submission, kit):
     """The record of an earlier grading of submission, when it is still valid; else None."""
-    path = results / submission.name / course_feedback.RECORD
+    path = results / submission.name / course_kit.feedback.RECORD
     try:
         record = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -336,11 +340,11 @@ def grade_folder(submissions_folder, results, config, jobs=None, force=False, pr
 def grade_submissions(submissions, results, config, jobs=None, force=False, progress=True,
                       isolation=None):
     """Grades the Submissions into results (see the module's docstring), their steps
-    isolated as course_sandbox.choose(isolation) says, which it prints; returns their
+    isolated as course_kit.sandbox.choose(isolation) says, which it prints; returns their
     records, in the order of submissions."""
     results = Path(results)
     results.mkdir(parents=True, exist_ok=True)
-    isolation = course_sandbox.choose(isolation)
+    isolation = course_kit.sandbox.choose(isolation)
     print(f"Isolation of each step: {isolation.describe()}", flush=True)
     if isolation.mode == "unprivileged user":
         results.chmod(0o700)  # the steps' users may read what all may read
@@ -355,12 +359,12 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
     jobs = min(jobs or os.cpu_count() or 1, len(todo)) or 1
     servers = queue.Queue()
     with tempfile.TemporaryDirectory(prefix="pyrt-handout-") as template:
-        template = course_kit.write_handout(Path(template) / "handout")
+        template = course_kit.handout.write_handout(Path(template) / "handout")
         try:
-            cores = course_isolation.cores()
+            cores = course_kit.isolation.cores()
             for index in range(jobs if todo else 0):
-                servers.put(course_isolation.StepServer(
-                    cores[index % len(cores)], course_sandbox.confinement(isolation)))
+                servers.put(course_kit.isolation.StepServer(
+                    cores[index % len(cores)], course_kit.sandbox.confinement(isolation)))
             # The pool ends before the servers close: a submission still being graded
             # gives its server back first, and one not started yet never waits for one
             with ThreadPoolExecutor(max_workers=jobs) as pool:
@@ -381,22 +385,22 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
             while not servers.empty():
                 server = servers.get()
                 server.close()
-                course_sandbox.close_confinement(server.confinement)
+                course_kit.sandbox.close_confinement(server.confinement)
     ordered = [records[submission.name] for submission in submissions]
-    course_feedback.write_grades(ordered, results / "grades.csv", REASON_LENGTH)
+    course_kit.feedback.write_grades(ordered, results / "grades.csv", REASON_LENGTH)
     limits_not_set = sorted({line for record in ordered
                              for line in record.get("limits_not_set", ())})
     if limits_not_set:
-        print("course_kit.py grade: this system refused some limits of a step's process, "
+        print("course_kit grade: this system refused some limits of a step's process, "
               "so the steps ran without them (no grade suffers for it): "
               + "; ".join(limits_not_set), file=sys.stderr)
     return ordered
 
 
 def main(args):
-    unsupported = course_isolation.unsupported()
+    unsupported = course_kit.isolation.unsupported()
     if unsupported:
-        sys.exit(f"course_kit.py grade: {unsupported}")
+        sys.exit(f"course_kit grade: {unsupported}")
     try:
         config = load_config(args.config or CONFIG)
         if args.jobs is not None and args.jobs < 1:
@@ -404,6 +408,6 @@ def main(args):
         records = grade_folder(args.submissions, args.out, config, args.jobs, args.force,
                                isolation=args.isolation)
     except (ValueError, FileNotFoundError) as error:
-        sys.exit(f"course_kit.py grade: {error}")
+        sys.exit(f"course_kit grade: {error}")
     print(f"The grades of {len(records)} submissions: {Path(args.out) / 'grades.csv'}")
     return 0

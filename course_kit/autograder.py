@@ -1,12 +1,12 @@
-"""Gradescope's autograder of Practice 1: the zip that `python course_kit.py autograder ZIP`
+"""Gradescope's autograder of Practice 1: the zip that `python -m course_kit autograder ZIP`
 writes, and what its run_autograder does with each submission.
 
 The zip holds, at its root, setup.sh (Gradescope runs it once, when it builds the
 autograder's image: it installs the grader's requirements), run_autograder (Gradescope
-runs it for each submission) and the kit itself: the framework, kit/ and the course_*.py
-modules, which Gradescope unzips into ROOT/source/. run_autograder runs
-`python3 ROOT/source/course_autograder.py run`, which grades ROOT/submission/ as one
-submission with the checks, limits and points of `grade` (course_grader.py, the same
+runs it for each submission) and the kit itself: the framework (the course modules and
+pyrt/) and course_kit/, which Gradescope unzips into ROOT/source/. run_autograder runs
+`python3 -m course_kit.autograder run` in ROOT/source/, which grades ROOT/submission/ as one
+submission with the checks, limits and points of `grade` (course_kit/grader.py, the same
 code), and writes ROOT/results/results.json, also when the grader itself fails (score 0,
 the error in its output, the traceback in what it printed, which only the staff sees);
 when Python cannot even start, run_autograder writes one of its own.
@@ -25,15 +25,15 @@ import traceback
 import zipfile
 from pathlib import Path
 
-import course_kit
-import course_sandbox
+import course_kit.handout
+import course_kit.sandbox
 
 ROOT_VARIABLE, DEFAULT_ROOT = "AUTOGRADER_ROOT", "/autograder"
 SUBMISSION_NAME = "submission"
 # The files of the kit, by pattern from the repository's folder
-KIT_PATTERNS = ("course_*.py", "PyRT_*.py", "AppRenderer.py", "requirements.txt",
-                "requirements-dev.txt", ".vscode/*.json", "kit/**/*.py", "kit/**/*.toml",
-                "kit/**/*.npz", "references/figure*.png")
+KIT_PATTERNS = ("PyRT_*.py", "AppRenderer.py", "pyrt/**/*.py", "course_kit/**/*.py",
+                "course_kit/**/*.toml", "course_kit/**/*.npz", "requirements.txt",
+                "requirements-dev.txt", ".vscode/*.json", "references/figure*.png")
 # Every file of the zip gets this date, so that the same kit makes the same bytes
 ZIP_DATE = (2020, 1, 1, 0, 0, 0)
 # The visibilities of the results of a grader that failed, whose settings may be what
@@ -59,7 +59,7 @@ RUN_AUTOGRADER = """\
 # Python itself cannot start.
 ROOT="${AUTOGRADER_ROOT:-/autograder}"
 rm -f "$ROOT/results/results.json"
-"${AUTOGRADER_PYTHON:-python3}" "$ROOT/source/course_autograder.py" run
+(cd "$ROOT/source" && "${AUTOGRADER_PYTHON:-python3}" -m course_kit.autograder run)
 if [ ! -s "$ROOT/results/results.json" ]; then
     mkdir -p "$ROOT/results"
     echo '{"score": 0, "output": "The autograder failed before it could grade, and your' \\
@@ -76,20 +76,20 @@ def kit_files():
     """{path in the zip: bytes} of the kit's own files, sorted by path."""
     files = {}
     for pattern in KIT_PATTERNS:
-        for path in course_kit.REPO.glob(pattern):
+        for path in course_kit.handout.REPO.glob(pattern):
             if path.is_file() and "__pycache__" not in path.parts:
-                files[path.relative_to(course_kit.REPO).as_posix()] = path.read_bytes()
+                files[path.relative_to(course_kit.handout.REPO).as_posix()] = path.read_bytes()
     return dict(sorted(files.items()))
 
 
 def write_zip(path, config=None):
     """Writes Gradescope's autograder zip to path, with the settings of the file config
-    (default: kit/grading.toml), which must be valid."""
-    import course_grader
+    (default: course_kit/grading.toml), which must be valid."""
+    import course_kit.grader
     files = kit_files()
     if config is not None:
-        course_grader.load_config(config)
-        files["kit/grading.toml"] = Path(config).read_bytes()
+        course_kit.grader.load_config(config)
+        files["course_kit/grading.toml"] = Path(config).read_bytes()
     entries = {"setup.sh": (SETUP_SH.encode(), 0o755),
                "run_autograder": (RUN_AUTOGRADER.encode(), 0o755)}
     entries.update((name, (content, 0o644)) for name, content in files.items())
@@ -109,17 +109,18 @@ def gradescope_submission(folder):
     """The Submission in Gradescope's submission folder: its course modules wherever they
     lie (the shallowest of each name), else those of the shallowest .zip in it that has
     any."""
-    import course_grader
-    submission = course_grader.read_submission(SUBMISSION_NAME, folder)
+    import course_kit.grader
+    submission = course_kit.grader.read_submission(SUBMISSION_NAME, folder)
     if submission.files:
         return submission
     archives = sorted(Path(folder).rglob("*.zip"),
                       key=lambda path: (len(path.relative_to(folder).parts), str(path)))
     for archive in archives:
-        zipped = course_grader.read_submission(SUBMISSION_NAME, archive)
+        zipped = course_kit.grader.read_submission(SUBMISSION_NAME, archive)
         if zipped.files:
             return zipped
-    submission.problems.append("no course module (" + ", ".join(course_kit.COURSE_MODULES)
+    submission.problems.append("no course module ("
+                               + ", ".join(course_kit.handout.COURSE_MODULES)
                                + ") was found in what you handed in")
     return submission
 
@@ -135,14 +136,14 @@ def run(root, isolation=None):
     try:
         # imported here, so that a grader that cannot even load (a requirement missing on
         # the image) leaves its results.json too
-        import course_feedback
-        import course_grader
-        config = course_grader.load_config(course_grader.CONFIG)
+        import course_kit.feedback
+        import course_kit.grader
+        config = course_kit.grader.load_config(course_kit.grader.CONFIG)
         submission = gradescope_submission(root / SUBMISSION_NAME)
         with tempfile.TemporaryDirectory(prefix="pyrt-autograder-") as graded:
-            record, = course_grader.grade_submissions([submission], graded, config, jobs=1,
-                                                      progress=False, isolation=isolation)
-        outcome = course_feedback.gradescope_results(record, config.gradescope)
+            record, = course_kit.grader.grade_submissions(
+                [submission], graded, config, jobs=1, progress=False, isolation=isolation)
+        outcome = course_kit.feedback.gradescope_results(record, config.gradescope)
         for test in outcome["tests"]:
             print(f"{test['number']}: {test['status']}, {test['score']} of "
                   f"{test['max_score']}")
@@ -162,11 +163,11 @@ def run(root, isolation=None):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(
-        prog="course_autograder.py", description="What Gradescope's run_autograder runs: "
+        prog="python -m course_kit.autograder", description="What Gradescope's run_autograder runs: "
         f"grades ${ROOT_VARIABLE}/{SUBMISSION_NAME}/ (default root {DEFAULT_ROOT}) into "
         "results/results.json.")
     parser.add_argument("command", choices=["run"])
-    course_sandbox.add_argument(parser)
+    course_kit.sandbox.add_argument(parser)
     args = parser.parse_args(argv)
     run(Path(os.environ.get(ROOT_VARIABLE, DEFAULT_ROOT)), args.isolation)
     return 0

@@ -8,7 +8,7 @@ with those of ``AcceleratedQueries``, and for ``PhongIntegrator.compute_color`` 
 of ``AcceleratedPhong``; both give the plain code's answers, bit for bit, faster:
 
 - scalar fast paths: the intersection tests of Sphere, InfinitePlane and Parallelogram
-  (PyRT_ScalarIntersections.py) and the Phong sum, written out on plain floats in the
+  (pyrt/scalar_intersections.py) and the Phong sum, written out on plain floats in the
   operations and order of the plain code, with a HitData made only for the nearest hit;
   for rays from the camera, a wall along the axes is tested without the products by
   zero, which add nothing;
@@ -40,7 +40,7 @@ from PyRT_Common import (BLACK, INFINITY, OFFSET_SCALE, SHADOW_EPSILON, SQUARES_
                          SQUARES_LOW, Dot, HitData, Length, RGBColor, Vector3D, _new,
                          euclidean_length)
 from PyRT_Core import UNIT_HIGH, UNIT_LOW, InfinitePlane, Lambertian, Parallelogram, Scene, Sphere
-from PyRT_ScalarIntersections import (POINT_AND_NORMAL, camera_test, infinite_plane_distance,
+from pyrt.scalar_intersections import (POINT_AND_NORMAL, camera_test, infinite_plane_distance,
                                       parallelogram_distance, sphere_distance)
 
 # Culling margins, relative to the size of the scene (scene_size): an object's cone is that

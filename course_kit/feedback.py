@@ -1,4 +1,4 @@
-"""What the grader writes from its records (course_grader.py): per submission the student's
+"""What the grader writes from its records (course_kit/grader.py): per submission the student's
 feedback page, Gradescope's results.json and the record itself, and grades.csv for all.
 
 The record of a submission (grading.json) holds its name, the fingerprint of what was
@@ -85,7 +85,7 @@ def graded_from(record):
 
 
 def check_reason(check):
-    """The reason of a step that failed first at this check, as course_grader words it."""
+    """The reason of a step that failed first at this check, as course_kit.grader words it."""
     return f"{check['title']}: {check['reason']}"
 
 
@@ -119,10 +119,10 @@ def _check_html(check):
 
 def _stories_html(check):
     """The history of the first wrong pixel as the student's code tells it, beside the
-    finished framework's history of the same pixel (course_references.framework_story)."""
-    import course_references  # loads the framework: only pages with a story need it
+    finished framework's history of the same pixel (course_kit.references.framework_story)."""
+    import course_kit.references  # loads the framework: only pages with a story need it
     e = html.escape
-    theirs = course_references.framework_story(check["name"], *check["story_pixel"])
+    theirs = course_kit.references.framework_story(check["name"], *check["story_pixel"])
     columns = [("Your code", check["story"]), ("The finished framework", theirs)]
     return ("<div style=\"display: flex; gap: 1em\">" + "".join(
         f"<div style=\"flex: 1; min-width: 0\"><p>{e(who)}:</p><pre>{e(story)}</pre></div>"
