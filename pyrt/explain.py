@@ -182,7 +182,8 @@ def plain_method(obj, name):
     """obj's own method `name`: an attribute of the object itself (a student may assign
     one), unless pyrt.acceleration put it there for a render, else its class's."""
     own = getattr(obj, "__dict__", {}).get(name)
-    if own is not None and type(getattr(own, "__self__", None)).__module__ != "pyrt.acceleration":
+    put_by = type(getattr(own, "__self__", None)).__module__
+    if own is not None and not put_by.startswith("pyrt.acceleration."):
         return own
     return getattr(type(obj), name).__get__(obj)  # an AttributeError when it has none
 

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from pyrt.acceleration import accelerated
+from pyrt.acceleration.accelerated import accelerated
 from PyRT_Common import is_number
 from pyrt.images import opencv_problem
 from pyrt.sampling import ADAPTIVE_TOLERANCE, sampling_plan

@@ -3,7 +3,7 @@
 Each ``*_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max)`` is the distance at
 which a primitive's ``intersect`` finds its hit along the ray from (ox, oy, oz) with unit
 direction (dx, dy, dz), or None on a miss; ``constants`` holds what the test reads of the
-object, as pyrt.acceleration's ``_object_test`` gathers them. Each ``*_hit`` gives the
+object, as pyrt.acceleration.queries' ``_object_test`` gathers them. Each ``*_hit`` gives the
 hit point and normal (px, py, pz, nx, ny, nz) at that distance. Every one repeats the
 operations of the method it stands for, in the same order, so that it rounds the same way
 and gives the same numbers, bit for bit, without making a Vector3D or a HitData.

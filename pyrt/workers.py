@@ -19,7 +19,7 @@ import traceback
 
 import numpy as np
 
-from pyrt.acceleration import accelerated, debugger_attached, plain
+from pyrt.acceleration.accelerated import accelerated, debugger_attached, plain
 from pyrt.sampling import render_block
 
 # With workers=None, a render that one process would finish sooner than this stays in

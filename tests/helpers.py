@@ -15,7 +15,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from AppRenderer import cornell_box_scene
-import pyrt.acceleration
+import pyrt.acceleration.queries
 import pyrt.workers
 from PyRT_Core import *
 from PyRT_Integrators import *
@@ -162,7 +162,7 @@ def visible_lights(scene, hit):
     nothing, as (light, wi, r2), wi the unit direction to the light and r2 its squared
     distance. The scene's own any_hit and pyrt.acceleration's decide alike, or the test
     fails."""
-    fast = pyrt.acceleration.AcceleratedQueries(scene)
+    fast = pyrt.acceleration.queries.AcceleratedQueries(scene)
     seen = []
     for light in scene.pointLights:
         to_light = light.pos - hit.hit_point

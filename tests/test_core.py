@@ -5,7 +5,7 @@ import cv2
 import numpy as np
 import pytest
 
-import pyrt.acceleration
+import pyrt.acceleration.queries
 import PyRT_Core
 from helpers import as_tuple, rgb, visible_lights
 from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, Cross, Dot, HitData, Length, Normalize,
@@ -1017,7 +1017,7 @@ def hits_anything(scene, r):
     """any_hit as testing every object gives it, which pyrt.acceleration's any_hit must
     give too."""
     expected = any(obj.intersect(r).has_hit for obj in scene.object_list)
-    assert pyrt.acceleration.AcceleratedQueries(scene).any_hit(r) is expected
+    assert pyrt.acceleration.queries.AcceleratedQueries(scene).any_hit(r) is expected
     return expected
 
 

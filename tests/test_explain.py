@@ -16,7 +16,7 @@ import sys
 import numpy as np
 import pytest
 
-import pyrt.acceleration
+import pyrt.acceleration.accelerated
 from AppRenderer import cornell_box_scene, sphere_test_scene
 from helpers import StudentPhongIntegrator, fov90_scene, read_png, render_image
 from PyRT_Core import *
@@ -276,7 +276,7 @@ def test_explain_runs_on_the_plain_queries_while_a_render_has_swapped_them():
     integrator = PhongIntegrator("unused")
     integrator.add_scene(cornell_box_scene(0.75, 2))
     plain = str(explain_pixel(integrator, *FLOOR_PIXEL))
-    with pyrt.acceleration.accelerated(integrator):
+    with pyrt.acceleration.accelerated.accelerated(integrator):
         fast = vars(integrator.scene)["closest_hit"]
         during = explain_pixel(integrator, *FLOOR_PIXEL)
         assert vars(integrator.scene)["closest_hit"] is fast  # put back as it was

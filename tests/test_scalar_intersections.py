@@ -6,7 +6,7 @@ import math
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from pyrt.acceleration import _object_test
+from pyrt.acceleration.queries import _object_test
 from PyRT_Common import *
 from PyRT_Core import *
 from pyrt.scalar_intersections import (POINT_AND_NORMAL, aligned_wall_distance, camera_test,
