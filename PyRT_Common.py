@@ -51,17 +51,6 @@ def is_number(value, whole=False) -> bool:
 
 
 # ------------------------------------------------------------------------------------------
-# Pickling, for worker processes
-# ------------------------------------------------------------------------------------------
-def _restore_state(obj, state):
-    """__setstate__ for the classes that worker processes receive pickled: setting the
-    attributes one by one keeps CPython's compact attribute layout, which pickle's default
-    (updating obj.__dict__) gives up, making every attribute read slower."""
-    for name, value in state.items():
-        setattr(obj, name, value)
-
-
-# ------------------------------------------------------------------------------------------
 # Vectors
 # ------------------------------------------------------------------------------------------
 def _shown(value):

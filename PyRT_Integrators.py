@@ -9,7 +9,7 @@ What render() needs besides its loop (worker processes on every core, several sa
 pixel, the progress bar, checks) lives in pyrt/rendering.py and the modules it uses.
 """
 from PyRT_Common import *
-from PyRT_Common import __all__ as _common_names, _restore_state, is_number
+from PyRT_Common import __all__ as _common_names, is_number
 import pyrt.explain
 from pyrt.images import native_path
 # FRAMEWORK ONLY BEGIN
@@ -36,7 +36,6 @@ class Integrator(ABC):
     then ``scene.save_image(self.get_filename())``.
     """
 
-    __setstate__ = _restore_state
 
     tonemap = True  # the PNG goes through the course's tonemapper (see Scene.save_image)
 

@@ -7,6 +7,8 @@ into an image in shared memory. The image is the same, bit for bit, whatever the
 of processes.
 """
 import copy
+import copyreg
+import io
 import mmap
 import multiprocessing
 import multiprocessing.connection
@@ -19,6 +21,7 @@ import traceback
 
 import numpy as np
 
+from PyRT_Core import BRDF, Camera, PointLight, Primitive, Scene
 from pyrt.acceleration.accelerated import accelerated, debugger_attached, plain
 from pyrt.sampling import render_block
 
@@ -28,6 +31,11 @@ from pyrt.sampling import render_block
 # which takes longer. This process renders meanwhile, so a worker that starts late only
 # takes fewer rows.
 PARALLEL_MIN_SECONDS = {"fork": 0.2, "spawn": 2.0, "forkserver": 2.0}
+# The course's classes whose objects the workers receive pickled, besides the integrator's
+# own class: unpickled with their attributes set one by one (_restore_state), they keep
+# CPython's compact attribute layout, which pickle's default (updating obj.__dict__) gives
+# up, making every attribute read of a render slower.
+COMPACT_CLASSES = (Scene, Primitive, BRDF, PointLight, Camera)
 # The environment variable that chooses how worker processes start, one of
 # multiprocessing's start methods ("fork", "spawn", "forkserver"); the tests use it to run
 # under each. Unset: see start_method.
@@ -161,6 +169,34 @@ def _row_blocks(y0, y1, workers):
     return blocks
 
 
+def _restore_state(obj, state):
+    """Unpickles obj's attributes one by one, which keeps CPython's compact layout."""
+    for name, value in state.items():
+        setattr(obj, name, value)
+
+
+class _CompactPickler(pickle.Pickler):
+    """A pickler whose objects of the classes `compact` unpickle with _restore_state."""
+
+    def __init__(self, file, compact):
+        super().__init__(file)
+        self.compact = compact
+
+    def reducer_override(self, obj):
+        if isinstance(obj, self.compact):
+            # what pickle's default does, with _restore_state setting the attributes
+            return copyreg.__newobj__, (type(obj),), vars(obj), None, None, _restore_state
+        return NotImplemented
+
+
+def compact_pickle(integrator):
+    """The integrator pickled for the worker processes: it, and its objects of
+    COMPACT_CLASSES, unpickle with CPython's compact attribute layout (_restore_state)."""
+    data = io.BytesIO()
+    _CompactPickler(data, COMPACT_CLASSES + (type(integrator),)).dump(integrator)
+    return data.getvalue()
+
+
 def _worker_payload(integrator):
     """(the pickled integrator for the worker processes, a copy unpickled from it, None),
     or (None, None, why they cannot be used). The workers get the scene without its image,
@@ -181,7 +217,7 @@ def _worker_payload(integrator):
     plain(scene)  # each process sets up its own accelerated queries
     plain(integrator)
     try:
-        payload = pickle.dumps(integrator)
+        payload = compact_pickle(integrator)
         return payload, pickle.loads(payload), None
     except Exception as error:  # pickle raises several types, all meaning the same here
         return None, None, (f"the integrator or its scene cannot be sent to worker processes "
