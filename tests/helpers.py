@@ -13,6 +13,7 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
+import pytest
 
 from AppRenderer import cornell_box_scene
 import pyrt.acceleration.queries
@@ -26,6 +27,7 @@ APP = REPO / "AppRenderer.py"
 # (plus float32 rounding when it is read back).
 PNG_TOLERANCE = 1.0 / 255.0 + 1e-6
 SUBPROCESS_TIMEOUT = 300  # seconds; only there so that a hung child cannot hang the suite
+TIGHT = 1e-12  # the tolerance of values worked out by hand
 
 
 def as_tuple(v):
@@ -36,6 +38,27 @@ def as_tuple(v):
 def rgb(c):
     """The channels (r, g, b) of an RGBColor, to compare with numbers."""
     return (c.r, c.g, c.b)
+
+
+def approx3(values, tol=TIGHT):
+    """Three numbers to compare with, within tol."""
+    return pytest.approx(values, abs=tol)
+
+
+def ray(origin, direction, **limits):
+    """A Ray from two (x, y, z) tuples, with its limits (t_min=..., t_max=...) set."""
+    r = Ray(Vector3D(*origin), Vector3D(*direction))
+    for name, value in limits.items():
+        setattr(r, name, value)
+    return r
+
+
+def assert_hit(hit, point, normal, distance, tol=TIGHT):
+    """hit is a hit at point, with normal, at distance, all within tol."""
+    assert hit.has_hit is True
+    assert as_tuple(hit.hit_point) == approx3(point, tol)
+    assert as_tuple(hit.normal) == approx3(normal, tol)
+    assert hit.hit_distance == pytest.approx(distance, abs=tol)
 
 
 def render_image(integrator, scene, **render_options):
