@@ -28,6 +28,8 @@ APP = REPO / "AppRenderer.py"
 PNG_TOLERANCE = 1.0 / 255.0 + 1e-6
 SUBPROCESS_TIMEOUT = 300  # seconds; only there so that a hung child cannot hang the suite
 TIGHT = 1e-12  # the tolerance of values worked out by hand
+INF = float("inf")
+GOOD = Vector3D(0.0, 0.0, -5.0)  # a valid point, for the arguments not under test
 
 
 def as_tuple(v):
@@ -59,6 +61,18 @@ def assert_hit(hit, point, normal, distance, tol=TIGHT):
     assert as_tuple(hit.hit_point) == approx3(point, tol)
     assert as_tuple(hit.normal) == approx3(normal, tol)
     assert hit.hit_distance == pytest.approx(distance, abs=tol)
+
+
+def distance(a, b):
+    """The distance between two points."""
+    return Length(a - b)
+
+
+def make_ray(origin, direction, t_max=HUGEVALUE, t_min=0.0):
+    """A ray with both limits chosen: t_min 0 keeps hits closer than EPSILON."""
+    ray = Ray(origin, direction, t_max)
+    ray.t_min = t_min
+    return ray
 
 
 def render_image(integrator, scene, **render_options):
