@@ -55,10 +55,11 @@ def bounds(obj):
 
 
 def cone(obj, point, scale, built_in) -> tuple:
-    """(ux, uy, uz, cos_limit): the directions d of rays from point that can hit obj are
-    among those with d.u >= cos_limit. For a sphere around obj (CLEARANCE larger), u points
-    to its centre and cos_limit is the cosine of the angle it fills. For a flat object
-    whose bounding sphere holds the point, u is the normal towards its plane and cos_limit
+    """(cone_x, cone_y, cone_z, cos_limit): the directions d of rays from point that can hit
+    obj are among those with d.cone >= cos_limit. For a sphere around obj (CLEARANCE
+    larger), cone points to its centre and cos_limit is the cosine of the angle it fills.
+    For a flat object whose bounding sphere holds the point, cone is the normal towards its
+    plane and cos_limit
     just below 0 (rays along the plane are kept); cos_limit -2 keeps every direction."""
     if not built_in:
         return 0.0, 0.0, 0.0, -2.0
@@ -80,8 +81,8 @@ def cone(obj, point, scale, built_in) -> tuple:
 
 
 def plane_beyond(obj, light_position, scale, built_in) -> tuple:
-    """(sx, sy, sz, side_limit) such that a ray towards the light from an origin o with
-    o.s > side_limit cannot meet obj: o lies more than ORIGIN_MARGIN on the light's side of
+    """(side_x, side_y, side_z, side_limit) such that a ray towards the light from an origin
+    o with o.side > side_limit cannot meet obj: o lies more than ORIGIN_MARGIN on the light's side of
     the plane of a flat obj, the light more than CLEARANCE, so the whole way lies on one
     side. (0, 0, 0, infinity), which leaves out nothing, for other objects."""
     height = _height(obj, light_position) if built_in else None
@@ -95,14 +96,15 @@ def plane_beyond(obj, light_position, scale, built_in) -> tuple:
 
 def clear_box(entries) -> tuple:
     """((x0, x1, y0, y1, z0, z1), inside): the open box of origins o from which no flat
-    object with an axis-aligned normal among the entries (plane_beyond) can be met on the
-    way to the light, and the entries that remain to be tested from inside the box. For
-    such an object, o.s > side_limit is a bound on one coordinate of o: the box is where all
-    of them hold, and the walls of a room lit from inside all drop out in one test."""
+    object with an axis-aligned normal among the entries (queries.Entry records, with the
+    sides of plane_beyond) can be met on the way to the light, and the entries that remain
+    to be tested from inside the box. For such an object, o.side > side_limit is a bound on
+    one coordinate of o: the box is where all of them hold, and the walls of a room lit from
+    inside all drop out in one test."""
     bounds = [-INFINITY, INFINITY] * 3  # x0, x1, y0, y1, z0, z1
     inside = []
     for entry in entries:
-        s, side_limit = entry[8:11], entry[11]
+        s, side_limit = (entry.side_x, entry.side_y, entry.side_z), entry.side_limit
         axes = [axis for axis in range(3) if s[axis] != 0.0]
         if side_limit == INFINITY or len(axes) != 1 or abs(s[axes[0]]) != 1.0:
             inside.append(entry)
@@ -129,6 +131,6 @@ def _point_on_plane(obj):
 
 def _reversed(cone_of_light) -> tuple:
     """A cone seen from a light, for the rays that run towards it: their direction d has
-    -d in the cone, that is d.(-u) >= cos_limit."""
-    ux, uy, uz, cos_limit = cone_of_light
-    return -ux, -uy, -uz, cos_limit
+    -d in the cone, that is d.(-cone) >= cos_limit."""
+    cone_x, cone_y, cone_z, cos_limit = cone_of_light
+    return -cone_x, -cone_y, -cone_z, cos_limit

@@ -1,11 +1,34 @@
 """AcceleratedPhong: PhongIntegrator.compute_color, equal to it bit for bit, on plain floats,
 with the fast queries' lists of objects for its shadow rays."""
 from math import sqrt
+from typing import NamedTuple
 
 from PyRT_Common import (BLACK, OFFSET_SCALE, SHADOW_EPSILON, SQUARES_HIGH, SQUARES_LOW,
                          RGBColor, euclidean_length)
 from PyRT_Core import UNIT_HIGH, UNIT_LOW, Lambertian
+from pyrt.acceleration.queries import TowardsLight
 from pyrt.scalar_intersections import POINT_AND_NORMAL
+
+
+class PhongLight(NamedTuple):
+    """A point light as AcceleratedPhong's loop reads it: its position, its intensity, the
+    clear box of origins of its shadow rays (queries.TowardsLight) with the entries left
+    inside it, and all its entries."""
+
+    x: float
+    y: float
+    z: float
+    red: float
+    green: float
+    blue: float
+    x0: float
+    x1: float
+    y0: float
+    y1: float
+    z0: float
+    z1: float
+    inside: list
+    entries: list
 
 
 class AcceleratedPhong:
@@ -23,10 +46,11 @@ class AcceleratedPhong:
         # A shadow ray ends SHADOW_EPSILON of its length short of its light: the light's
         # entries hold for it when that is within light_match (else any_hit decides).
         self.longest_shadow_ray = queries.light_match / SHADOW_EPSILON
-        self.lights = [(light.pos.x, light.pos.y, light.pos.z, light.intensity.r,
-                        light.intensity.g, light.intensity.b) + box + (inside, entries)
-                       for light, (_, _, _, _, _, _, box, inside, entries, _)
-                       in zip(scene.pointLights, queries.towards_light)]
+        # plain tuples, which the loop of compute_color unpacks faster than NamedTuples
+        self.lights = [tuple(PhongLight(*light.pos, *light.intensity, *towards.clear_box,
+                                        towards.inside, towards.entries))
+                       for light, towards in zip(scene.pointLights,
+                                                 map(TowardsLight._make, queries.towards_light))]
 
     def compute_color(self, ray):
         """PhongIntegrator.compute_color(ray)."""
@@ -57,25 +81,28 @@ class AcceleratedPhong:
                 euclidean_length(tx, ty, tz))
             if r * r == 0.0 or nx * tx + ny * ty + nz * tz <= 0.0:
                 continue
-            # shadow_ray(hit, light.pos): the light is in front, so the offset is upwards
+            # shadow_ray(hit, light.pos): the light is in front, so the offset is upwards;
+            # (sox, soy, soz) is the shadow ray's origin, (sdx, sdy, sdz) its direction
             sox, soy, soz = px + nx * offset, py + ny * offset, pz + nz * offset
-            sx, sy, sz = x - sox, y - soy, z - soz
-            squares = sx * sx + sy * sy + sz * sz
+            sdx, sdy, sdz = x - sox, y - soy, z - soz
+            squares = sdx * sdx + sdy * sdy + sdz * sdz
             distance = sqrt(squares) if SQUARES_LOW < squares < SQUARES_HIGH else (
-                euclidean_length(sx, sy, sz))
+                euclidean_length(sdx, sdy, sdz))
             if not 0.0 < distance <= longest:
                 return self.plain_color(ray)
-            sx, sy, sz = sx / distance, sy / distance, sz / distance
-            if not UNIT_LOW <= sx * sx + sy * sy + sz * sz <= UNIT_HIGH:
+            sdx, sdy, sdz = sdx / distance, sdy / distance, sdz / distance
+            if not UNIT_LOW <= sdx * sdx + sdy * sdy + sdz * sdz <= UNIT_HIGH:
                 return self.plain_color(ray)
             # any_hit of the shadow ray, with the entries of its light
             s_max = distance * (1.0 - SHADOW_EPSILON)
             if x0 < sox < x1 and y0 < soy < y1 and z0 < soz < z1:
                 entries = inside
-            for test, constants, _, _, ux, uy, uz, cos_limit, qx, qy, qz, side_limit in entries:
-                if (sx * ux + sy * uy + sz * uz >= cos_limit
-                        and sox * qx + soy * qy + soz * qz <= side_limit
-                        and test(constants, sox, soy, soz, sx, sy, sz, offset, s_max) is not None):
+            for (test, constants, _, _, cone_x, cone_y, cone_z, cos_limit,
+                 side_x, side_y, side_z, side_limit) in entries:
+                if (sdx * cone_x + sdy * cone_y + sdz * cone_z >= cos_limit
+                        and sox * side_x + soy * side_y + soz * side_z <= side_limit
+                        and test(constants, sox, soy, soz, sdx, sdy, sdz, offset,
+                                 s_max) is not None):
                     break  # in the shadow of this object
             else:
                 cos_theta = nx * (tx / r) + ny * (ty / r) + nz * (tz / r)  # get_value(wi, ...)
