@@ -2,7 +2,7 @@
 
 Run it with no arguments (the play button of VSCode) to render Figure 1 of the course, Phong
 on the Cornell box; `python AppRenderer.py --help` lists the options. With --all-figures it
-renders the images of Figures 1-5 and compares them with the course's (see PyRT_Compare.py).
+renders the images of Figures 1-5 and compares them with the course's (see pyrt/compare.py).
 """
 import argparse
 import sys
@@ -12,11 +12,11 @@ from pathlib import Path
 from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
-from PyRT_Compare import REFERENCE_SIZE, compare_figures, write_sheet
-from PyRT_Explain import explain_pixel
-from PyRT_ExplainPicture import save_picture
+from pyrt.compare import REFERENCE_SIZE, compare_figures, write_sheet
+from pyrt.explain import explain_pixel
+from pyrt.explain_picture import save_picture
 # FRAMEWORK ONLY BEGIN
-from PyRT_Sampling import ADAPTIVE_TOLERANCE
+from pyrt.sampling import ADAPTIVE_TOLERANCE
 # FRAMEWORK ONLY END
 
 # out/ next to this script, wherever it is run from
@@ -200,7 +200,7 @@ MIN_WINDOW_WIDTH = 320
 
 
 def explain(integrator, x, y, folder):
-    """Prints the story of pixel (x, y) of the integrator's image (see PyRT_Explain.py) and
+    """Prints the story of pixel (x, y) of the integrator's image (see pyrt/explain.py) and
     saves the picture of its rays as folder/pixel_X_Y.png."""
     history = explain_pixel(integrator, x, y)
     print(history)

@@ -17,7 +17,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from PyRT_Images import cv2  # OpenCV, or an ImportError that says how to repair it
+from pyrt.images import cv2  # OpenCV, or an ImportError that says how to repair it
 
 __all__ = [
     "np", "cv2", "plt", "ABC", "abstractmethod",
@@ -48,17 +48,6 @@ def is_number(value, whole=False) -> bool:
     float or numpy number (only an int or numpy integer when whole), True and False aside."""
     kinds = (int, np.integer) if whole else (int, float, np.number)
     return isinstance(value, kinds) and not isinstance(value, (bool, np.bool_))
-
-
-# ------------------------------------------------------------------------------------------
-# Pickling, for worker processes
-# ------------------------------------------------------------------------------------------
-def _restore_state(obj, state):
-    """__setstate__ for the classes that worker processes receive pickled: setting the
-    attributes one by one keeps CPython's compact attribute layout, which pickle's default
-    (updating obj.__dict__) gives up, making every attribute read slower."""
-    for name, value in state.items():
-        setattr(obj, name, value)
 
 
 # ------------------------------------------------------------------------------------------

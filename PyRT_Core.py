@@ -4,14 +4,14 @@ Scene.closest_hit and Scene.any_hit are the course's loops: every object of the 
 asked for its intersection with the ray, and the nearest hit is kept. Every intersection
 test measures t as a distance along the ray and works on the ray's unit direction, so a
 ray whose direction is not of unit length hits the same point at the same distance as its
-normalised version. (During a render, PyRT_Acceleration answers the same queries faster,
+normalised version. (During a render, pyrt.acceleration answers the same queries faster,
 with the same answers, whenever the scene is made of PyRT's own classes.)
 """
 from math import isfinite, tan
 
 from PyRT_Common import *
-from PyRT_Common import _restore_state, check_constants, is_number
-from PyRT_Images import write_image_files
+from PyRT_Common import check_constants, is_number
+from pyrt.images import write_image_files
 
 # A ray direction whose squared length is this close to 1 is used as it is; anything else
 # is normalised first (a normalised vector is only of unit length to within rounding).
@@ -110,7 +110,6 @@ class Scene:
     """Everything that is rendered: camera, objects, point lights, ambient light i_a and an
     optional environment map, plus the image they are rendered into."""
 
-    __setstate__ = _restore_state
 
     def __init__(self):
         self.camera = None
@@ -188,7 +187,7 @@ class Scene:
 
         With tonemap False the PNG shows the linear values clipped to [0, 1] (Figure 2).
         Returns the path of the PNG (a name with Windows's separators is saved where it
-        means on every system, PyRT_Images.native_path)."""
+        means on every system, pyrt.images.native_path)."""
         image = self.rendered_image
         if image is None:
             raise RuntimeError("Scene.save_image: the scene has no image yet; call "
@@ -204,7 +203,6 @@ class Primitive(ABC):
     """An object of the scene: a surface that rays can hit, with a material (BRDF) and an
     emitted radiance (BLACK unless the object is an area light)."""
 
-    __setstate__ = _restore_state
 
     def __init__(self, emission=BLACK):
         self.emission = _check_color(type(self).__name__, "emission", emission)
@@ -382,7 +380,6 @@ class BRDF(ABC):
     """How a surface reflects light: the ratio of radiance leaving towards wo to irradiance
     arriving from wi (both unit vectors pointing away from the surface)."""
 
-    __setstate__ = _restore_state
 
     @abstractmethod
     def get_value(self, wi, wo, normal):
@@ -413,7 +410,6 @@ class PointLight:
     """A point that emits ``intensity`` in every direction; the irradiance it gives a point
     at distance r, facing it, is intensity / r^2."""
 
-    __setstate__ = _restore_state
 
     def __init__(self, pos_, intensity_):
         self.pos = _check_vector("PointLight", "pos_", pos_)
@@ -432,7 +428,6 @@ class Camera:
     along p * (1 / |p|), the unit direction rounded as the course's Normalize rounds it (so
     that the ties where two walls meet fall as in the course's images)."""
 
-    __setstate__ = _restore_state
 
     width = _GeometricAttribute()
     height = _GeometricAttribute()

@@ -38,8 +38,8 @@ from AppRenderer import FIGURES, positive_arg
 from benchmarks.timing import (OUT_DIR, run_command, SCENE_NAMES, figure_label, label, markdown_table,
                                prepared, progress, write_report)
 from PyRT_Integrators import Integrator
-from PyRT_Sampling import ACCURACY_SUFFIX, ADAPTIVE_TOLERANCE
-from PyRT_Workers import usable_cores
+from pyrt.sampling import ACCURACY_SUFFIX, ADAPTIVE_TOLERANCE
+from pyrt.workers import usable_cores
 
 # The course figures measured: the ray-traced ones whose colour varies smoothly within a
 # pixel (Lazy traces no rays, Intersection is red or black).

@@ -6,7 +6,7 @@ Integrator.render() takes in microseconds per pixel with one process and with al
 and the speed-up between the two. For the Phong images also the flat loop's time
 (benchmarks/flat_loop.py) and render()'s time as a multiple of it; and the same for
 PhongIntegrator's own compute_color, the course's algorithm as students write it, which
-runs when PyRT_Acceleration's AcceleratedPhong does not stand in for it.
+runs when pyrt.acceleration's AcceleratedPhong does not stand in for it.
 
 Many objects: Phong at 32 x 32 pixels on a scene of small tiles (parallelograms) lit by
 three point lights, with 100 and with 1000 tiles: the time of 1000 as a multiple of 100.
@@ -33,7 +33,7 @@ from benchmarks.timing import (OUT_DIR, run_command, SCENE_NAMES, figure_label, 
 from PyRT_Common import Normalize, RGBColor, Vector3D
 from PyRT_Core import Camera, Lambertian, Parallelogram, PointLight, Scene
 from PyRT_Integrators import Integrator, PhongIntegrator
-from PyRT_Workers import usable_cores
+from pyrt.workers import usable_cores
 
 # Targets: render() of Figure 1 in one process at most this multiple of the flat loop's
 # time; PhongIntegrator's own code at most this multiple; 1000 tiles at most this multiple

@@ -15,7 +15,7 @@ from typing import Callable
 
 from AppRenderer import SCENES, make_integrator
 from PyRT_Integrators import Integrator
-from PyRT_Workers import usable_cores
+from pyrt.workers import usable_cores
 
 OUT_DIR = Path(__file__).resolve().parent.parent / "out"
 SCENE_NAMES = {"cornell": "Cornell box", "sphere": "sphere scene"}

@@ -9,7 +9,7 @@ import os
 import pytest
 from hypothesis import settings
 
-import PyRT_Workers
+import pyrt.workers
 from helpers import APP, HeldBackWorker, run_python, wait_for_file
 
 settings.register_profile("repeatable", derandomize=True)
@@ -42,7 +42,7 @@ def worker_first(monkeypatch, tmp_path):
     def install(raise_in_worker=None, interrupt=False):
         marker = tmp_path / "worker_rendered"
         taken = tmp_path / "this_process_took_a_block"
-        render_block = PyRT_Workers.render_block
+        render_block = pyrt.workers.render_block
 
         def held_back(integrator, y0, y1, samples):  # only this process renders here
             taken.touch()
@@ -52,8 +52,8 @@ def worker_first(monkeypatch, tmp_path):
                 raise KeyboardInterrupt
             return rows
 
-        monkeypatch.setattr(PyRT_Workers, "render_block", held_back)
-        monkeypatch.setattr(PyRT_Workers, "_worker",
+        monkeypatch.setattr(pyrt.workers, "render_block", held_back)
+        monkeypatch.setattr(pyrt.workers, "_worker",
                             HeldBackWorker(str(marker), str(taken), raise_in_worker))
         return marker
     return install

@@ -10,7 +10,7 @@ them: the common mistakes, a second correct solution in another style, and hosti
 import re
 from pathlib import Path
 
-import course_kit
+import course_kit.handout
 
 # stub -> (module, the class whose stub it is, the stub's first line)
 STUB_PLACES = {
@@ -193,7 +193,7 @@ def fill(handout_text, stub, answer):
     line_start = handout_text.rindex("\n", 0, at) + 1
     indent = handout_text[line_start:at]
     if stub == "render":
-        stub_lines = course_kit.RENDER_STUB.count("\n")
+        stub_lines = course_kit.handout.RENDER_STUB.count("\n")
     else:
         stub_lines = 2
     end = line_start

@@ -13,10 +13,11 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
+import pytest
 
 from AppRenderer import cornell_box_scene
-import PyRT_Acceleration
-import PyRT_Workers
+import pyrt.acceleration.queries
+import pyrt.workers
 from PyRT_Core import *
 from PyRT_Integrators import *
 
@@ -26,6 +27,9 @@ APP = REPO / "AppRenderer.py"
 # (plus float32 rounding when it is read back).
 PNG_TOLERANCE = 1.0 / 255.0 + 1e-6
 SUBPROCESS_TIMEOUT = 300  # seconds; only there so that a hung child cannot hang the suite
+TIGHT = 1e-12  # the tolerance of values worked out by hand
+INF = float("inf")
+GOOD = Vector3D(0.0, 0.0, -5.0)  # a valid point, for the arguments not under test
 
 
 def as_tuple(v):
@@ -36,6 +40,39 @@ def as_tuple(v):
 def rgb(c):
     """The channels (r, g, b) of an RGBColor, to compare with numbers."""
     return (c.r, c.g, c.b)
+
+
+def approx3(values, tol=TIGHT):
+    """Three numbers to compare with, within tol."""
+    return pytest.approx(values, abs=tol)
+
+
+def ray(origin, direction, **limits):
+    """A Ray from two (x, y, z) tuples, with its limits (t_min=..., t_max=...) set."""
+    r = Ray(Vector3D(*origin), Vector3D(*direction))
+    for name, value in limits.items():
+        setattr(r, name, value)
+    return r
+
+
+def assert_hit(hit, point, normal, distance, tol=TIGHT):
+    """hit is a hit at point, with normal, at distance, all within tol."""
+    assert hit.has_hit is True
+    assert as_tuple(hit.hit_point) == approx3(point, tol)
+    assert as_tuple(hit.normal) == approx3(normal, tol)
+    assert hit.hit_distance == pytest.approx(distance, abs=tol)
+
+
+def distance(a, b):
+    """The distance between two points."""
+    return Length(a - b)
+
+
+def make_ray(origin, direction, t_max=HUGEVALUE, t_min=0.0):
+    """A ray with both limits chosen: t_min 0 keeps hits closer than EPSILON."""
+    ray = Ray(origin, direction, t_max)
+    ray.t_min = t_min
+    return ray
 
 
 def render_image(integrator, scene, **render_options):
@@ -56,7 +93,7 @@ def headless_env():
     repository on the import path."""
     env = {name: value for name, value in os.environ.items() if name != "DISPLAY"}
     if env.get("MUTANT_UNDER_TEST") == "stats":
-        # mutmut's first run, which records what each test calls, needs its setup.cfg in
+        # mutmut's first run, which records what each test calls, needs its pyproject.toml in
         # the working folder; a child Python started elsewhere runs the code unmutated.
         del env["MUTANT_UNDER_TEST"]
     env["MPLBACKEND"] = "Agg"
@@ -160,9 +197,9 @@ def visible_lights(scene, hit):
     """The point lights that light the point of hit (a HitData) as PhongIntegrator decides
     it: each light in front of the surface, n . (pos - p) > 0, whose shadow_ray meets
     nothing, as (light, wi, r2), wi the unit direction to the light and r2 its squared
-    distance. The scene's own any_hit and PyRT_Acceleration's decide alike, or the test
+    distance. The scene's own any_hit and pyrt.acceleration's decide alike, or the test
     fails."""
-    fast = PyRT_Acceleration.AcceleratedQueries(scene)
+    fast = pyrt.acceleration.queries.AcceleratedQueries(scene)
     seen = []
     for light in scene.pointLights:
         to_light = light.pos - hit.hit_point
@@ -184,21 +221,21 @@ def wait_for_file(path, seconds=60):
         time.sleep(0.005)
 
 
-# The worker process's functions as PyRT_Workers defines them, before any test replaces
+# The worker process's functions as pyrt.workers defines them, before any test replaces
 # them: what a HeldBackWorker runs, whether its process was forked or started afresh.
-_WORKER = PyRT_Workers._worker
-_RENDER_BLOCK = PyRT_Workers.render_block
-_FINISH = PyRT_Workers._SharedImage.finish
+_WORKER = pyrt.workers._worker
+_RENDER_BLOCK = pyrt.workers.render_block
+_FINISH = pyrt.workers._SharedImage.finish
 
 
 class HeldBackWorker:
-    """PyRT_Workers._worker holding back its first block until the main process has taken
+    """pyrt.workers._worker holding back its first block until the main process has taken
     one (the file `taken` exists), and leaving the file `marker` once it has finished a
     block; raise_in_worker = (exception class, arguments): it raises that exception in
     its first block instead, once it has rendered the rows and left the marker. The
     worker_first fixture (conftest.py) installs it. It is an object that pickle sends to
     the worker process, so it reaches workers of every start method (spawned ones import
-    PyRT_Workers afresh, without the test's changes)."""
+    pyrt.workers afresh, without the test's changes)."""
 
     def __init__(self, marker, taken, raise_in_worker=None):
         self.marker, self.taken, self.raise_in_worker = marker, taken, raise_in_worker
@@ -218,8 +255,8 @@ class HeldBackWorker:
             return block
 
         # This is the worker's own process, which ends with the render.
-        PyRT_Workers.render_block = held_back
-        PyRT_Workers._SharedImage.finish = finish_and_mark
+        pyrt.workers.render_block = held_back
+        pyrt.workers._SharedImage.finish = finish_and_mark
         _WORKER(*args)
 
 

@@ -48,7 +48,7 @@ if str(REPO) not in sys.path:
 import numpy as np  # noqa: E402
 
 import AppRenderer  # noqa: E402  (needs the repository on the import path first)
-from PyRT_Compare import REFERENCE_DIR, REFERENCE_SIZE as SIZE  # noqa: E402
+from pyrt.compare import REFERENCE_DIR, REFERENCE_SIZE as SIZE  # noqa: E402
 from PyRT_Integrators import PhongIntegrator  # noqa: E402
 from helpers import small_cornell_box  # noqa: E402
 

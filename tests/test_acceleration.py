@@ -1,4 +1,4 @@
-"""PyRT_Acceleration.py: the fast queries give the plain loops' answers, bit for bit, on
+"""pyrt/acceleration.py: the fast queries give the plain loops' answers, bit for bit, on
 random scenes and rays; they never stand in for code of a student's own; their setup grows
 with objects x lights; and Figure 1's seams fall as in the course's own render."""
 import math
@@ -9,11 +9,13 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-import PyRT_Acceleration
+import pyrt.acceleration.accelerated
+import pyrt.acceleration.fingerprints
 from AppRenderer import cornell_box_scene, sphere_test_scene
 from helpers import REPO, fov90_scene, render_image, small_cornell_box
-from PyRT_Acceleration import (AcceleratedPhong, AcceleratedQueries, accelerated,
-                               can_accelerate, can_accelerate_phong)
+from pyrt.acceleration.accelerated import accelerated, can_accelerate, can_accelerate_phong
+from pyrt.acceleration.phong import AcceleratedPhong
+from pyrt.acceleration.queries import AcceleratedQueries
 from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
@@ -194,7 +196,7 @@ def test_the_course_images_are_the_same_with_and_without_the_fast_paths(monkeypa
                          NormalIntegrator, PhongIntegrator)
             for scene in (small_cornell_box, lambda s: sphere_test_scene(width=s, height=s))]
     fast = [render_image(integrator, scene(30), workers=1) for integrator, scene in jobs]
-    monkeypatch.setattr(PyRT_Acceleration, "can_accelerate", lambda scene: False)
+    monkeypatch.setattr(pyrt.acceleration.accelerated, "can_accelerate", lambda scene: False)
     plain = [render_image(integrator, scene(30), workers=1) for integrator, scene in jobs]
     for a, b in zip(fast, plain):
         assert a.any() and np.array_equal(a, b)
@@ -299,10 +301,11 @@ def test_a_function_edited_in_place_is_not_stood_in_for(monkeypatch):
     integrator = PhongIntegrator("unused")
     integrator.add_scene(scene)
     assert can_accelerate(scene) and can_accelerate_phong(integrator, AcceleratedQueries(scene))
-    monkeypatch.setitem(PyRT_Acceleration.PHONG_FUNCTIONS, "PyRT_Integrators.shadow_ray", "0")
+    monkeypatch.setitem(pyrt.acceleration.fingerprints.PHONG_FUNCTIONS, "shadow_ray", "0")
     assert can_accelerate(scene) and not can_accelerate_phong(
         integrator, AcceleratedQueries(scene))
-    monkeypatch.setitem(PyRT_Acceleration.QUERY_FUNCTIONS, "PyRT_Core.Normalize", "0")
+    monkeypatch.setitem(pyrt.acceleration.fingerprints.QUERY_FUNCTIONS, "PyRT_Core.Normalize",
+                        "0")
     assert not can_accelerate(scene)
 
 
@@ -332,11 +335,11 @@ def test_a_debugger_leaves_the_plain_code_to_run(monkeypatch):
 def test_the_fingerprints_are_those_of_the_functions_the_fast_paths_repeat():
     # A failure here means a function the fast paths repeat has changed: make the fast
     # path do what it does now, check it with this file's tests, and copy the new
-    # fingerprints that `python PyRT_Acceleration.py` prints into its tables.
-    for functions in (PyRT_Acceleration.QUERY_FUNCTIONS, PyRT_Acceleration.PHONG_FUNCTIONS,
-                      dict(PyRT_Acceleration.INTERSECT_FUNCTIONS.values())):
-        for name, digest in functions.items():
-            assert PyRT_Acceleration.fingerprint(PyRT_Acceleration.current(name)) == digest, name
+    # fingerprints that `python -m pyrt.acceleration` prints into its tables.
+    # The Phong integrator's functions are looked up where it registered itself.
+    assert pyrt.acceleration.fingerprints.phong_integrator() is PhongIntegrator
+    for name, proven, now in pyrt.acceleration.fingerprints.mirrored_functions():
+        assert now == proven, name
 
 
 # ------------------------------------------------------------------------------------------

@@ -1,4 +1,4 @@
-"""PyRT_Compare.py: comparing an image with a reference counts the pixels that differ by
+"""pyrt/compare.py: comparing an image with a reference counts the pixels that differ by
 more than one 8-bit step and the largest difference, refuses images of another size, and
 draws the comparison sheet of the course's figures.
 
@@ -9,7 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from PyRT_Compare import (REFERENCE_DIR, Comparison, MissingReference, compare_figures,
+from pyrt.compare import (REFERENCE_DIR, Comparison, MissingReference, compare_figures,
                           compare_with_reference, draw_sheet, write_sheet)
 
 # The 8-bit colours of the heat map for no difference and for the largest one

@@ -1,20 +1,20 @@
-"""The course framework's arithmetic for a hit (course_arithmetic.py), against hand
+"""The course framework's arithmetic for a hit (course_kit/arithmetic.py), against hand
 calculations and against PyRT's own primitives away from the edges."""
 import sys
 
 import numpy as np
 
 import AppRenderer
-import course_arithmetic
-import course_kit
-import course_references
+import course_kit.arithmetic
+import course_kit.handout
+import course_kit.references
 from PyRT_Common import EPSILON, Normalize, Ray, Vector3D
 from PyRT_Core import InfinitePlane, Parallelogram, Scene, Sphere
 
-sys.path.insert(0, str(course_kit.CHECKS))
+sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice1_checks as checks  # noqa: E402  (found through the line above)
 
-COURSE_SEAMS = course_kit.REPO / "tests" / "data" / "course_figure1_seams.npz"
+COURSE_SEAMS = course_kit.handout.REPO / "tests" / "data" / "course_figure1_seams.npz"
 SEAM_SAMPLE = 5  # every 5th of Figure 1's 6952 seam pixels: a second of rendering
 
 SQUARE = Parallelogram(Vector3D(0.0, 0.0, -2.0), Vector3D(1.0, 0.0, 0.0),
@@ -26,40 +26,40 @@ def towards(x, y, z):
 
 
 def test_a_parallelogram_is_hit_inside_and_missed_outside():
-    hit = course_arithmetic.parallelogram_intersect(SQUARE, towards(0.5, 0.5, -2.0))
+    hit = course_kit.arithmetic.parallelogram_intersect(SQUARE, towards(0.5, 0.5, -2.0))
     assert hit.has_hit
     assert abs(hit.hit_distance - np.sqrt(4.5)) < 1e-12  # |(0.5, 0.5, -2)|
     assert (hit.normal.x, hit.normal.y, hit.normal.z) == (0.0, 0.0, 1.0)  # faces the ray
-    assert not course_arithmetic.parallelogram_intersect(SQUARE, towards(1.01, 0.5, -2)).has_hit
-    assert not course_arithmetic.parallelogram_intersect(SQUARE, towards(-0.01, 0.5,
+    assert not course_kit.arithmetic.parallelogram_intersect(SQUARE, towards(1.01, 0.5, -2)).has_hit
+    assert not course_kit.arithmetic.parallelogram_intersect(SQUARE, towards(-0.01, 0.5,
                                                                          -2)).has_hit
     # its corner is inside: the course would divide by its zero distance from the corner
-    assert course_arithmetic.parallelogram_intersect(SQUARE, towards(0.0, 0.0, -1.0)).has_hit
+    assert course_kit.arithmetic.parallelogram_intersect(SQUARE, towards(0.0, 0.0, -1.0)).has_hit
 
 
 def test_a_ray_parallel_to_a_plane_or_beyond_t_max_misses():
     plane = InfinitePlane(Vector3D(0.0, -1.0, 0.0), Vector3D(0.0, 1.0, 0.0))
-    assert not course_arithmetic.plane_intersect(plane, towards(1.0, 0.0, 0.0)).has_hit
+    assert not course_kit.arithmetic.plane_intersect(plane, towards(1.0, 0.0, 0.0)).has_hit
     down = towards(0.0, -1.0, 0.0)
-    assert course_arithmetic.plane_intersect(plane, down).hit_distance == 1.0
+    assert course_kit.arithmetic.plane_intersect(plane, down).hit_distance == 1.0
     down.t_max = 0.5
-    assert not course_arithmetic.plane_intersect(plane, down).has_hit
+    assert not course_kit.arithmetic.plane_intersect(plane, down).has_hit
 
 
 def test_a_sphere_is_hit_at_its_near_side_then_from_inside_at_its_far_side():
     sphere = Sphere(Vector3D(0.0, 0.0, -5.0), 1.0)
     ray = towards(0.0, 0.0, -1.0)
-    hit = course_arithmetic.sphere_intersect(sphere, ray)
+    hit = course_kit.arithmetic.sphere_intersect(sphere, ray)
     assert (hit.has_hit, hit.hit_distance, hit.normal.z) == (True, 4.0, 1.0)
     ray.t_min = 5.0
-    assert course_arithmetic.sphere_intersect(sphere, ray).hit_distance == 6.0
+    assert course_kit.arithmetic.sphere_intersect(sphere, ray).hit_distance == 6.0
     ray.t_min = EPSILON
-    assert not course_arithmetic.sphere_intersect(sphere, towards(0.0, 1.0, -1.0)).has_hit
+    assert not course_kit.arithmetic.sphere_intersect(sphere, towards(0.0, 1.0, -1.0)).has_hit
 
 
 def test_away_from_the_edges_it_answers_as_pyrts_primitives():
     scene = checks.cornell_box(40)
-    course = course_arithmetic.with_course_arithmetic(checks.cornell_box(40))
+    course = course_kit.arithmetic.with_course_arithmetic(checks.cornell_box(40))
     camera = scene.camera
     for y in range(0, 40, 3):
         for x in range(0, 40, 3):
@@ -75,7 +75,7 @@ def test_it_lets_the_rays_through_the_cornell_boxs_corners_at_40_pixels():
     # What the course's framework renders at 40 x 40: pixels (35, 4) and (4, 35) see the
     # background between two walls, where PyRT's edge tolerance closes the crack.
     scene = checks.cornell_box(40)
-    course = course_arithmetic.with_course_arithmetic(checks.cornell_box(40))
+    course = course_kit.arithmetic.with_course_arithmetic(checks.cornell_box(40))
     for x, y in ((35, 4), (4, 35)):
         ray = Ray(Vector3D(0.0, 0.0, 0.0), scene.camera.get_direction(x, y))
         assert not Scene.closest_hit(course, ray).has_hit
@@ -87,9 +87,9 @@ def test_it_renders_figure_1s_seams_as_the_course_did():
     # framework's own render): with shadow rays lifted EPSILON along the normal, the
     # course's arithmetic sees at every one of these pixels the surface and the shadows
     # the course saw, so its colour to the rounding of the terms' order.
-    scene = course_arithmetic.with_course_arithmetic(AppRenderer.cornell_box_scene(0.75, 2))
-    phong = course_references.PhongVariant(
-        "unused", blocked=course_references.blocked_from_lifted_start)
+    scene = course_kit.arithmetic.with_course_arithmetic(AppRenderer.cornell_box_scene(0.75, 2))
+    phong = course_kit.references.PhongVariant(
+        "unused", blocked=course_kit.references.blocked_from_lifted_start)
     phong.add_scene(scene)
     with np.load(COURSE_SEAMS) as seams:
         ys, xs, course = (seams[key][::SEAM_SAMPLE] for key in ("y", "x", "rgb"))

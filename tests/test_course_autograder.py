@@ -1,4 +1,4 @@
-"""Gradescope's autograder (course_autograder.py): the zip, and its run_autograder run end
+"""Gradescope's autograder (course_kit/autograder.py): the zip, and its run_autograder run end
 to end in a temporary /autograder tree, as Gradescope runs it."""
 import json
 import shutil
@@ -9,24 +9,24 @@ import zipfile
 
 import pytest
 
-import course_autograder
-import course_feedback
-import course_grader
-import course_kit
+import course_kit.autograder
+import course_kit.feedback
+import course_kit.grader
+import course_kit.handout
 import course_kit_students as students
 from helpers import REPO, SUBPROCESS_TIMEOUT, headless_env, run_python
 
-STEPS = list(course_grader.STEP_TITLES)
+STEPS = list(course_kit.grader.STEP_TITLES)
 
 
 @pytest.fixture(scope="module")
 def autograder_zip(tmp_path_factory):
-    return course_autograder.write_zip(tmp_path_factory.mktemp("autograder") / "autograder.zip")
+    return course_kit.autograder.write_zip(tmp_path_factory.mktemp("autograder") / "autograder.zip")
 
 
 @pytest.fixture(scope="module")
 def handout(tmp_path_factory):
-    return course_kit.write_handout(tmp_path_factory.mktemp("autograder") / "handout")
+    return course_kit.handout.write_handout(tmp_path_factory.mktemp("autograder") / "handout")
 
 
 def autograder_root(autograder_zip, root):
@@ -57,8 +57,8 @@ def assert_gradescopes_format(results):
     assert isinstance(results["score"], (int, float))
     assert isinstance(results["execution_time"], (int, float))
     assert isinstance(results["output"], str)
-    assert results["stdout_visibility"] in course_grader.VISIBILITIES
-    assert results["visibility"] in course_grader.VISIBILITIES
+    assert results["stdout_visibility"] in course_kit.grader.VISIBILITIES
+    assert results["visibility"] in course_kit.grader.VISIBILITIES
     assert results["score"] == sum(test["score"] for test in results["tests"])
     for test in results["tests"]:
         assert sorted(test) == ["max_score", "name", "number", "output", "score", "status"]
@@ -72,34 +72,34 @@ def test_the_zip_has_setup_sh_and_an_executable_run_autograder_at_its_root(autog
         modes = {info.filename: info.external_attr >> 16 for info in archive.infolist()}
         setup = archive.read("setup.sh").decode()
     assert modes["setup.sh"] & stat.S_IXUSR and modes["run_autograder"] & stat.S_IXUSR
-    assert set(course_autograder.kit_files()) | {"setup.sh", "run_autograder"} == set(modes)
-    for needed in ("course_grader.py", "course_sandbox.py", "kit/grading.toml",
-                   "kit/checks/practice1_checks.py", "kit/checks/expected/practice1.npz",
-                   "PyRT_Rendering.py", "references/figure1_phong.png"):
+    assert set(course_kit.autograder.kit_files()) | {"setup.sh", "run_autograder"} == set(modes)
+    for needed in ("course_kit/grader.py", "course_kit/sandbox.py", "course_kit/grading.toml",
+                   "course_kit/checks/practice1_checks.py", "course_kit/checks/expected/practice1.npz",
+                   "pyrt/rendering.py", "references/figure1_phong.png"):
         assert needed in modes
     assert '-m pip install --no-cache-dir -r requirements.txt' in setup
-    again = course_autograder.write_zip(tmp_path / "again.zip")
+    again = course_kit.autograder.write_zip(tmp_path / "again.zip")
     assert again.read_bytes() == autograder_zip.read_bytes()
 
 
 def test_the_finished_framework_gets_every_point_through_run_autograder(autograder_zip,
                                                                        tmp_path):
     root = autograder_root(autograder_zip, tmp_path)
-    for name in course_kit.COURSE_MODULES:
+    for name in course_kit.handout.COURSE_MODULES:
         shutil.copyfile(REPO / name, root / "submission" / name)
     results, ran = run_autograder(root)
     assert ran.returncode == 0, ran.stdout + ran.stderr
     assert_gradescopes_format(results)
     assert results["score"] == 100
     assert [(test["number"], test["name"], test["score"]) for test in results["tests"]] == [
-        (step, title, 25) for step, title in course_grader.STEP_TITLES.items()]
+        (step, title, 25) for step, title in course_kit.grader.STEP_TITLES.items()]
     assert ran.stdout.startswith("Isolation of each step: ")
 
 
 def test_the_untouched_handout_gets_none_with_each_steps_message(autograder_zip, handout,
                                                                 tmp_path):
     root = autograder_root(autograder_zip, tmp_path)
-    for name in course_kit.COURSE_MODULES:
+    for name in course_kit.handout.COURSE_MODULES:
         shutil.copyfile(handout / name, root / "submission" / name)
     results, _ = run_autograder(root)
     assert_gradescopes_format(results)
@@ -127,9 +127,9 @@ def test_a_zip_with_its_modules_in_a_folder_and_extra_files_is_graded_as_grade_d
     folder = tmp_path / "submissions"
     students.write_submission(folder / "student", handout,
                               students.VARIANTS["no_inverse_square"])
-    record, = course_grader.grade_folder(folder, tmp_path / "graded",
-                                         course_grader.load_config(), progress=False)
-    local = course_feedback.gradescope_results(record)
+    record, = course_kit.grader.grade_folder(folder, tmp_path / "graded",
+                                         course_kit.grader.load_config(), progress=False)
+    local = course_kit.feedback.gradescope_results(record)
     for outcome in (results, local):
         del outcome["execution_time"]
     assert results == local
@@ -137,7 +137,7 @@ def test_a_zip_with_its_modules_in_a_folder_and_extra_files_is_graded_as_grade_d
 
 def test_a_grader_that_fails_still_leaves_a_valid_results_json(autograder_zip, tmp_path):
     root = autograder_root(autograder_zip, tmp_path)
-    (root / "source" / "kit" / "grading.toml").write_text("[points\n")
+    (root / "source" / "course_kit" / "grading.toml").write_text("[points\n")
     results, ran = run_autograder(root)
     assert ran.returncode == 0
     assert results["score"] == 0 and results["tests"] == []
@@ -150,7 +150,7 @@ def test_a_grader_that_fails_still_leaves_a_valid_results_json(autograder_zip, t
 def test_a_grader_that_cannot_load_or_start_still_leaves_a_valid_results_json(
         autograder_zip, tmp_path):
     root = autograder_root(autograder_zip, tmp_path)
-    grader = root / "source" / "course_grader.py"
+    grader = root / "source" / "course_kit" / "grader.py"
     grader.write_text("import a_requirement_not_installed\n" + grader.read_text())
     results, _ = run_autograder(root)
     assert results["score"] == 0 and results["tests"] == []
@@ -166,7 +166,7 @@ def test_a_grader_that_cannot_load_or_start_still_leaves_a_valid_results_json(
 
 def test_a_submission_without_course_modules_says_so(tmp_path):
     (tmp_path / "notes.txt").write_text("nothing here")
-    submission = course_autograder.gradescope_submission(tmp_path)
+    submission = course_kit.autograder.gradescope_submission(tmp_path)
     assert submission.files == {}
     assert submission.problems == [
         "no course module (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py)"
@@ -177,14 +177,14 @@ def test_course_kit_autograder_writes_the_zip_and_refuses_a_wrong_config(tmp_pat
     ran = run_python(["-m", "course_kit", "autograder", tmp_path / "a.zip"], cwd=REPO)
     assert ran.returncode == 0, ran.stderr
     assert zipfile.ZipFile(tmp_path / "a.zip").read("run_autograder").decode() == (
-        course_autograder.RUN_AUTOGRADER)
+        course_kit.autograder.RUN_AUTOGRADER)
     wrong = tmp_path / "grading.toml"
-    wrong.write_text((REPO / "kit" / "grading.toml").read_text().replace(
+    wrong.write_text((REPO / "course_kit" / "grading.toml").read_text().replace(
         'visibility = "visible"', 'visibility = "always"'))
-    ran = run_python(["course_kit.py", "autograder", tmp_path / "b.zip", "--config", wrong],
+    ran = run_python(["-m", "course_kit", "autograder", tmp_path / "b.zip", "--config", wrong],
                      cwd=REPO)
     assert ran.returncode == 1
-    assert ran.stderr == (f"course_kit.py autograder: {wrong}: [gradescope] visibility must "
+    assert ran.stderr == (f"course_kit autograder: {wrong}: [gradescope] visibility must "
                           "be one of hidden, visible, after_due_date, after_published, got "
                           "'always'\n")
     assert not (tmp_path / "b.zip").exists()
@@ -192,14 +192,14 @@ def test_course_kit_autograder_writes_the_zip_and_refuses_a_wrong_config(tmp_pat
 
 def test_the_gradescope_table_sets_the_visibilities_of_results_json(tmp_path):
     path = tmp_path / "grading.toml"
-    path.write_text((REPO / "kit" / "grading.toml").read_text().replace(
+    path.write_text((REPO / "course_kit" / "grading.toml").read_text().replace(
         'stdout_visibility = "hidden"', 'stdout_visibility = "after_published"'))
-    config = course_grader.load_config(path)
+    config = course_kit.grader.load_config(path)
     assert config.gradescope == {"visibility": "visible",
                                  "stdout_visibility": "after_published"}
-    assert course_grader.load_config().gradescope == course_grader.GRADESCOPE_DEFAULTS
+    assert course_kit.grader.load_config().gradescope == course_kit.grader.GRADESCOPE_DEFAULTS
     path.write_text(path.read_text() + 'tests = "hidden"\n')
     with pytest.raises(ValueError) as error:
-        course_grader.load_config(path)
+        course_kit.grader.load_config(path)
     assert str(error.value) == (f"{path}: [gradescope] may give only visibility, "
                                 "stdout_visibility")

@@ -1,4 +1,4 @@
-"""course_isolation.py on the systems teaching assistants grade on: limits a system
+"""course_kit/isolation.py on the systems teaching assistants grade on: limits a system
 refuses (as macOS refuses one of the address space) and systems without the process
 limits and fork the grader needs (Windows), simulated on this one."""
 import json
@@ -10,13 +10,13 @@ from types import SimpleNamespace
 
 import pytest
 
-import course_grader
-import course_isolation
-import course_kit
+import course_kit.grader
+import course_kit.isolation
+import course_kit.handout
 from helpers import REPO, SUBPROCESS_TIMEOUT, headless_env
 
-pytestmark = pytest.mark.skipif(course_isolation.unsupported() is not None,
-                                reason=str(course_isolation.unsupported()))
+pytestmark = pytest.mark.skipif(course_kit.isolation.unsupported() is not None,
+                                reason=str(course_kit.isolation.unsupported()))
 
 MACOS_REFUSAL = "current limit exceeds maximum limit"  # what macOS's setrlimit answers
 
@@ -38,8 +38,8 @@ class Limits:
 
 def test_a_refused_limit_is_returned_as_a_line_and_the_others_are_still_set(monkeypatch):
     limits = Limits(refused={Limits.RLIMIT_AS})
-    monkeypatch.setattr(course_isolation, "resource", limits)
-    refused = course_isolation.set_limits({"cpu_seconds": 30, "wall_seconds": 60,
+    monkeypatch.setattr(course_kit.isolation, "resource", limits)
+    refused = course_kit.isolation.set_limits({"cpu_seconds": 30, "wall_seconds": 60,
                                            "memory_mib": 2, "output_kib": 3})
     assert refused == [f"memory_mib = 2 (RLIMIT_AS: ValueError: {MACOS_REFUSAL})"]
     assert limits.set == {Limits.RLIMIT_CPU: (30, 31), Limits.RLIMIT_FSIZE: (3072, 3072),
@@ -48,8 +48,8 @@ def test_a_refused_limit_is_returned_as_a_line_and_the_others_are_still_set(monk
 
 def test_every_limit_set_returns_nothing(monkeypatch):
     limits = Limits(refused=set())
-    monkeypatch.setattr(course_isolation, "resource", limits)
-    assert course_isolation.set_limits({"cpu_seconds": 1, "wall_seconds": 2,
+    monkeypatch.setattr(course_kit.isolation, "resource", limits)
+    assert course_kit.isolation.set_limits({"cpu_seconds": 1, "wall_seconds": 2,
                                         "memory_mib": 1, "output_kib": 1}) == []
     assert limits.set[Limits.RLIMIT_AS] == (1024 * 1024, 1024 * 1024)
 
@@ -70,8 +70,8 @@ def setrlimit(which, values):
 
 
 resource.setrlimit = setrlimit
-import course_isolation
-course_isolation.main(sys.argv[1:])
+import course_kit.isolation
+course_kit.isolation.main(sys.argv[1:])
 '''
 
 
@@ -79,15 +79,15 @@ def test_with_the_address_space_limit_refused_a_right_submission_gets_every_poin
         tmp_path, monkeypatch, capsys):
     server = tmp_path / "refusing_server.py"
     server.write_text(SERVER_REFUSING_THE_ADDRESS_SPACE)
-    monkeypatch.setattr(course_isolation, "SERVER_SCRIPT", server)
+    monkeypatch.setattr(course_kit.isolation, "SERVER_SCRIPT", server)
     submissions = tmp_path / "submissions"
     for name in ("first", "second"):  # the finished framework, twice
         (submissions / name).mkdir(parents=True)
-        for module in course_kit.COURSE_MODULES:
+        for module in course_kit.handout.COURSE_MODULES:
             shutil.copyfile(REPO / module, submissions / name / module)
-    config = course_grader.load_config()
+    config = course_kit.grader.load_config()
     # the process isolation: the server script above lies where a sandbox shows nothing
-    records = course_grader.grade_folder(submissions, tmp_path / "results", config, jobs=1,
+    records = course_kit.grader.grade_folder(submissions, tmp_path / "results", config, jobs=1,
                                          progress=False, isolation="process")
     refused = (f"memory_mib = {config.limits['memory_mib']} (RLIMIT_AS: ValueError: "
                f"{MACOS_REFUSAL})")
@@ -115,7 +115,7 @@ def run_as_on_windows(code, cwd):
 
 
 WHERE_THE_GRADER_RUNS = (
-    "course_kit.py grade: the grader runs on Linux, macOS, WSL or Gradescope: it needs "
+    "course_kit grade: the grader runs on Linux, macOS, WSL or Gradescope: it needs "
     "process limits (the resource module) and os.fork, which this system lacks (the "
     "handout and its checks run anywhere)\n")
 
@@ -123,9 +123,9 @@ WHERE_THE_GRADER_RUNS = (
 def test_without_resource_and_fork_the_grader_says_where_it_runs_in_one_sentence(tmp_path):
     (tmp_path / "submissions").mkdir()
     result = run_as_on_windows(
-        f"sys.argv = ['course_kit.py', 'grade', 'submissions', '--out', 'results']; "
-        f"import runpy; runpy.run_path({str(REPO / 'course_kit.py')!r}, "
-        f"run_name='__main__')", tmp_path)
+        f"sys.argv = ['course_kit', 'grade', 'submissions', '--out', 'results']; "
+        f"sys.path.insert(0, {str(REPO)!r}); "
+        f"import runpy; runpy.run_module('course_kit', run_name='__main__')", tmp_path)
     assert result.returncode == 1
     assert result.stderr == WHERE_THE_GRADER_RUNS
     assert not (tmp_path / "results").exists()
@@ -137,7 +137,7 @@ def test_without_resource_and_fork_the_suite_runs_and_skips_the_graders_tests(tm
         "'tests/test_course_kit.py', '-k', 'grades_csv or default_config_gives']))", REPO)
     assert result.returncode == 0, result.stdout + result.stderr
     assert re.search(r"\b1 passed, 1 skipped\b", result.stdout), result.stdout
-    reason = WHERE_THE_GRADER_RUNS.removeprefix("course_kit.py grade: ").rstrip("\n")
+    reason = WHERE_THE_GRADER_RUNS.removeprefix("course_kit grade: ").rstrip("\n")
     assert "SKIPPED [1] tests/test_course_kit.py" in result.stdout
     assert reason in result.stdout.replace("\n", " "), result.stdout
 
@@ -147,12 +147,12 @@ def test_a_step_server_that_dies_stops_the_grading_with_the_reason(tmp_path, mon
     # wait for a server that nobody gives back
     server = tmp_path / "dying_server.py"
     server.write_text("raise SystemExit(3)\n")
-    monkeypatch.setattr(course_isolation, "SERVER_SCRIPT", server)
+    monkeypatch.setattr(course_kit.isolation, "SERVER_SCRIPT", server)
     submissions = tmp_path / "submissions"
     for name in ("first", "second"):
         (submissions / name).mkdir(parents=True)
         shutil.copyfile(REPO / "PyRT_Core.py", submissions / name / "PyRT_Core.py")
     with pytest.raises(RuntimeError, match="the grader's step server ended unexpectedly"):
-        course_grader.grade_folder(submissions, tmp_path / "results",
-                                   course_grader.load_config(), jobs=1, progress=False,
+        course_kit.grader.grade_folder(submissions, tmp_path / "results",
+                                   course_kit.grader.load_config(), jobs=1, progress=False,
                                    isolation="process")

@@ -1,4 +1,4 @@
-"""The course kit of Practice 1 (course_kit.py): the handout made from the marked framework,
+"""The course kit of Practice 1 (course_kit/handout.py): the handout made from the marked framework,
 the students' checks in it, and the grader of submissions."""
 import csv
 import hashlib
@@ -16,27 +16,27 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-import course_feedback
-import course_grader
-import course_isolation
-import course_kit
-import course_references
+import course_kit.__main__
+import course_kit.feedback
+import course_kit.grader
+import course_kit.handout
+import course_kit.isolation
+import course_kit.references
 import course_kit_students as students
 from helpers import REPO, run_python
 from PyRT_Common import Vector3D
 
-sys.path.insert(0, str(course_kit.CHECKS))
+sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice1_checks as checks  # noqa: E402  (found through the line above)
 
 HANDOUT_FILES = [
     ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
-    "PyRT_Compare.py", "PyRT_Core.py", "PyRT_Explain.py", "PyRT_ExplainPicture.py",
-    "PyRT_Images.py", "PyRT_Integrators.py",
-    "out/.gitkeep", "pytest.ini", "references/figure1_phong.png",
-    "references/figure2_lazy.png", "references/figure3_intersection.png",
-    "references/figure4_depth.png", "references/figure4_normal.png",
-    "references/figure5_phong.png", "requirements.txt", "tests/expected/practice1.npz",
-    "tests/practice1_checks.py", "tests/test_practice1.py"]
+    "PyRT_Core.py", "PyRT_Integrators.py", "out/.gitkeep", "pyrt/__init__.py",
+    "pyrt/compare.py", "pyrt/explain.py", "pyrt/explain_picture.py", "pyrt/images.py",
+    "pytest.ini", "references/figure1_phong.png", "references/figure2_lazy.png",
+    "references/figure3_intersection.png", "references/figure4_depth.png",
+    "references/figure4_normal.png", "references/figure5_phong.png", "requirements.txt",
+    "tests/expected/practice1.npz", "tests/practice1_checks.py", "tests/test_practice1.py"]
 CHECK_TESTS = {  # the students' tests, by the step in their names
     "test_assignment_1_1_lazy_image": "1.1", "test_assignment_1_2_any_hit": "1.2",
     "test_assignment_1_2_render_loop_rays": "1.2",
@@ -53,7 +53,7 @@ def tree(folder):
 
 @pytest.fixture(scope="session")
 def handout(tmp_path_factory):
-    return course_kit.write_handout(tmp_path_factory.mktemp("kit") / "handout")
+    return course_kit.handout.write_handout(tmp_path_factory.mktemp("kit") / "handout")
 
 
 def with_framework(handout, folder):
@@ -62,6 +62,8 @@ def with_framework(handout, folder):
     for path in REPO.glob("PyRT_*.py"):
         shutil.copyfile(path, folder / path.name)
     shutil.copyfile(REPO / "AppRenderer.py", folder / "AppRenderer.py")
+    shutil.copytree(REPO / "pyrt", folder / "pyrt", dirs_exist_ok=True,
+                    ignore=shutil.ignore_patterns("__pycache__"))
     return folder
 
 
@@ -70,22 +72,22 @@ def with_framework(handout, folder):
 # ------------------------------------------------------------------------------------------
 def test_the_handout_holds_the_course_modules_and_what_they_need(handout):
     assert sorted(tree(handout)) == HANDOUT_FILES
-    assert (handout / "pytest.ini").read_text() == course_kit.PYTEST_INI
+    assert (handout / "pytest.ini").read_text() == course_kit.handout.PYTEST_INI
     requirements = (handout / "requirements.txt").read_text().split("\n")[1:]
     assert [re.match(r"[\w.-]+", line)[0] for line in requirements if line] == [
         "numpy", "opencv-python-headless", "matplotlib", "pytest"]
 
 
 def test_the_handout_is_the_same_on_every_run(handout, tmp_path):
-    again = course_kit.write_handout(tmp_path / "again")
+    again = course_kit.handout.write_handout(tmp_path / "again")
     assert tree(again) == tree(handout)
 
 
 def test_the_handout_goes_into_a_new_folder_only(tmp_path, capsys):
     (tmp_path / "notes.txt").write_text("mine")
     with pytest.raises(SystemExit) as exited:
-        course_kit.main(["handout", str(tmp_path)])
-    assert exited.value.code == f"course_kit.py handout: {tmp_path} is not empty; the " \
+        course_kit.__main__.main(["handout", str(tmp_path)])
+    assert exited.value.code == f"course_kit handout: {tmp_path} is not empty; the " \
                                 "handout goes into a new folder"
     assert tree(tmp_path) == {"notes.txt": b"mine"}
 
@@ -94,18 +96,18 @@ def solution_lines():
     """The lines of the framework's solution blocks that appear nowhere else in the
     framework (stripped, comments and blank lines left out)."""
     blocked, elsewhere = set(), set()
-    for name in course_kit.COURSE_MODULES:
+    for name in course_kit.handout.COURSE_MODULES:
         source = (REPO / name).read_text(encoding="utf-8")
         lines = source.splitlines()
         inside = set()
-        for block in course_kit.marked_blocks(source, name):
+        for block in course_kit.handout.marked_blocks(source, name):
             inside.update(range(block.begin, block.end + 1))
-            if block.kind != course_kit.FRAMEWORK_ONLY:
+            if block.kind != course_kit.handout.FRAMEWORK_ONLY:
                 blocked.update(line.strip() for line in lines[block.begin:block.end - 1])
         elsewhere.update(line.strip() for number, line in enumerate(lines, 1)
                          if number not in inside)
-    stubs = {line.strip() for line in course_kit.RENDER_STUB.splitlines()} | set(
-        course_kit.BODY_STUBS.values())
+    stubs = {line.strip() for line in course_kit.handout.RENDER_STUB.splitlines()} | set(
+        course_kit.handout.BODY_STUBS.values())
     return {line for line in blocked - elsewhere - stubs if line and not line.startswith("#")}
 
 
@@ -122,13 +124,13 @@ def test_no_line_of_the_solution_is_left_in_the_handout(handout):
         assert not re.search(r"# (ASSIGNMENT \S+|FRAMEWORK ONLY) (BEGIN|END)", text), name
     # The expected images are the only data made from the solution
     binary = sorted(name for name in tree(handout) if name.endswith((".png", ".npz")))
-    assert binary == [f"references/{name}" for name in course_kit.FIGURES] + [
+    assert binary == [f"references/{name}" for name in course_kit.handout.FIGURES] + [
         "tests/expected/practice1.npz"]
 
 
 def test_the_handout_has_the_courses_stubs(handout):
     integrators = (handout / "PyRT_Integrators.py").read_text()
-    assert textwrap.indent(course_kit.RENDER_STUB, "    ") in integrators
+    assert textwrap.indent(course_kit.handout.RENDER_STUB, "    ") in integrators
     for step, count in (("1.2", 1), ("1.3", 2), ("1.4", 1)):
         assert integrators.count(f"        # ASSIGNMENT {step}: PUT YOUR CODE HERE\n"
                                  "        pass\n") == count
@@ -210,9 +212,9 @@ class Integrator:
 
 
 def test_each_block_is_replaced_by_its_stub_at_its_indentation():
-    assert course_kit.strip_solution(MARKED, "example.py") == (
+    assert course_kit.handout.strip_solution(MARKED, "example.py") == (
         "import os\n\n\nclass Integrator:\n"
-        + textwrap.indent(course_kit.RENDER_STUB, "    ")
+        + textwrap.indent(course_kit.handout.RENDER_STUB, "    ")
         + '\n    def any_hit(self, ray):\n        """Docstring stays."""\n'
         "        # ASSIGNMENT 1.2: PUT YOUR CODE HERE\n        return False\n\n"
         "    def compute_color(self, ray):\n"
@@ -245,11 +247,11 @@ def test_a_marker_the_kit_cannot_read_stops_it_with_the_file_and_line(change, me
     source = MARKED.replace(*change)
     assert source != MARKED
     if message is None:  # the same stub for another step: allowed
-        assert "# ASSIGNMENT 1.3: PUT YOUR CODE HERE" in course_kit.strip_solution(
+        assert "# ASSIGNMENT 1.3: PUT YOUR CODE HERE" in course_kit.handout.strip_solution(
             source, "example.py")
         return
-    with pytest.raises(course_kit.MarkerError) as error:
-        course_kit.strip_solution(source, "example.py")
+    with pytest.raises(course_kit.handout.MarkerError) as error:
+        course_kit.handout.strip_solution(source, "example.py")
     assert str(error.value).startswith(message)
 
 
@@ -259,9 +261,9 @@ def test_a_second_block_of_render_methods_is_refused():
         "    # ASSIGNMENT 1.1-1.2 BEGIN\n    def render_row").replace(
         "        return []\n    # FRAMEWORK ONLY END",
         "        return []\n    # ASSIGNMENT 1.1-1.2 END")
-    with pytest.raises(course_kit.MarkerError, match=r"^example.py, line 13: a second block "
+    with pytest.raises(course_kit.handout.MarkerError, match=r"^example.py, line 13: a second block "
                                                      r"of step 1.1-1.2"):
-        course_kit.strip_solution(source, "example.py")
+        course_kit.handout.strip_solution(source, "example.py")
 
 
 # ------------------------------------------------------------------------------------------
@@ -269,9 +271,9 @@ def test_a_second_block_of_render_methods_is_refused():
 # ------------------------------------------------------------------------------------------
 def test_the_expected_data_is_what_the_framework_renders():
     # Fails when the framework's images change: then remake the data on purpose, with
-    # `python course_kit.py expected`, and say why in the commit.
-    arrays = course_references.expected_arrays()
-    assert course_references.npz_bytes(arrays) == course_kit.EXPECTED.read_bytes()
+    # `python -m course_kit expected`, and say why in the commit.
+    arrays = course_kit.references.expected_arrays()
+    assert course_kit.references.npz_bytes(arrays) == course_kit.handout.EXPECTED.read_bytes()
 
 
 def test_the_checks_scenes_are_apprenderers():
@@ -395,11 +397,11 @@ def test_a_passed_check_with_a_note_shows_it_without_marking_anything_wrong():
     check = {"name": "intersection", "title": "the Intersection image (Figure 3)",
              "passed": True, "reason": "", "note": "your red is 255 where PyRT's is 1",
              "message": "right", "error": "", "images": {}}
-    step = {"step": "1.2", "title": course_grader.STEP_TITLES["1.2"], "points": 25,
+    step = {"step": "1.2", "title": course_kit.grader.STEP_TITLES["1.2"], "points": 25,
             "max_points": 25, "passed": True, "reason": "", "output": "", "checks": [check]}
     record = {"submission": "s", "files": {}, "problems": [], "steps": [step], "total": 25,
               "max_total": 25}
-    page = course_feedback.feedback_html(record)
+    page = course_kit.feedback.feedback_html(record)
     assert "Worth knowing: your red is 255 where PyRT&#x27;s is 1." in page
     assert "wrong" not in page and 'class="failed"' not in page
 
@@ -468,17 +470,17 @@ def digest(folder):
 def graded(handout, tmp_path_factory):
     """Every submission of VERDICTS graded with the LIMITS: (the submissions' folder, its
     digest before grading, the results' folder, the records, the outside path)."""
-    if course_isolation.unsupported():  # Windows: the handout's tests still run
-        pytest.skip(course_isolation.unsupported())
+    if course_kit.isolation.unsupported():  # Windows: the handout's tests still run
+        pytest.skip(course_kit.isolation.unsupported())
     base = tmp_path_factory.mktemp("grading")
     folder, results, outside = base / "submissions", base / "results", base / "outside.txt"
     folder.mkdir()
     shutil.copytree(handout, folder / "handout_untouched",
                     ignore=lambda _, names: [n for n in names
-                                             if n not in course_kit.COURSE_MODULES])
+                                             if n not in course_kit.handout.COURSE_MODULES])
     framework = folder / "framework"
     framework.mkdir()
-    for name in course_kit.COURSE_MODULES:
+    for name in course_kit.handout.COURSE_MODULES:
         shutil.copyfile(REPO / name, framework / name)
     students.write_submission(folder / "right", handout, {})
     for name, answers in students.VARIANTS.items():
@@ -502,8 +504,8 @@ def graded(handout, tmp_path_factory):
     config_path = base / "grading.toml"
     config_path.write_text(LIMITS)
     before = digest(folder)
-    records = course_grader.grade_folder(folder, results,
-                                         course_grader.load_config(config_path), jobs=2,
+    records = course_kit.grader.grade_folder(folder, results,
+                                         course_kit.grader.load_config(config_path), jobs=2,
                                          progress=False)
     return folder, before, results, {record["submission"]: record for record in records}, \
         outside, config_path
@@ -538,7 +540,7 @@ def test_a_submission_that_cannot_be_read_says_so_and_is_graded_as_the_handout(g
     _, _, results, records, _, _ = graded
     assert records["not_a_zip"]["problems"] == [
         "not_a_zip.zip is not a readable zip file (File is not a zip file)"]
-    assert records["not_a_zip"]["files"] == dict.fromkeys(course_kit.COURSE_MODULES,
+    assert records["not_a_zip"]["files"] == dict.fromkeys(course_kit.handout.COURSE_MODULES,
                                                           "handout")
     page = Page((results / "not_a_zip" / "feedback.html").read_text())
     assert "not_a_zip.zip is not a readable zip file (File is not a zip file)" in page.text
@@ -568,18 +570,18 @@ def test_grades_csv_has_a_row_per_submission_with_points_total_and_reasons(grade
         points = [0 if step in verdicts else weights[step] for step in weights]
         assert row[1:6] == [str(p) for p in points] + [str(sum(points))], row
         assert [bool(reason) for reason in row[6:]] == [step in verdicts for step in weights]
-        assert all(len(reason) <= course_grader.REASON_LENGTH for reason in row[6:])
+        assert all(len(reason) <= course_kit.grader.REASON_LENGTH for reason in row[6:])
 
 
 def test_results_json_has_the_fields_of_gradescopes_format(graded):
     _, _, results, records, _, _ = graded
     for name, record in records.items():
-        result = json.loads((results / name / course_feedback.GRADESCOPE).read_text())
+        result = json.loads((results / name / course_kit.feedback.GRADESCOPE).read_text())
         assert sorted(result) == ["execution_time", "output", "score", "stdout_visibility",
                                   "tests", "visibility"]
         assert result["score"] == sum(test["score"] for test in result["tests"])
         assert [(test["number"], test["name"]) for test in result["tests"]] == list(
-            course_grader.STEP_TITLES.items())
+            course_kit.grader.STEP_TITLES.items())
         for test in result["tests"]:
             assert sorted(test) == ["max_score", "name", "number", "output", "score",
                                     "status"]
@@ -647,7 +649,7 @@ def test_a_wrong_phong_image_tells_its_first_wrong_pixel_beside_the_frameworks_s
     framework = page[page.index("The finished framework:"):]
     assert f"Pixel ({x}, {y}) of PhongIntegrator" in framework
     assert "blocked by object 0 (Sphere)" in framework
-    result = json.loads((results / "unmapped_normals_and_no_shadows" / course_feedback.GRADESCOPE)
+    result = json.loads((results / "unmapped_normals_and_no_shadows" / course_kit.feedback.GRADESCOPE)
                         .read_text())
     assert check["story"] in result["tests"][3]["output"]  # the step of Phong, 1.4
 
@@ -657,38 +659,38 @@ def test_grading_again_skips_what_is_graded_and_regrades_what_changed(graded, mo
     folder, _, shared_results, records, _, config_path = graded
     # A copy of the results, which this test changes and the other tests read as graded
     results = shutil.copytree(shared_results, tmp_path / "results")
-    config = course_grader.load_config(config_path)
+    config = course_kit.grader.load_config(config_path)
     graded_again = []
-    original = course_grader.grade_submission
+    original = course_kit.grader.grade_submission
 
     def recording(submission, *args):
         graded_again.append(submission.name)
         return original(submission, *args)
 
-    monkeypatch.setattr(course_grader, "grade_submission", recording)
-    again = course_grader.grade_folder(folder, results, config, progress=False)
+    monkeypatch.setattr(course_kit.grader, "grade_submission", recording)
+    again = course_kit.grader.grade_folder(folder, results, config, progress=False)
     assert graded_again == [] and again == [records[name] for name in sorted(VERDICTS)]
     copy = tmp_path / "changed"
     shutil.copytree(folder / "syntax_error", copy / "syntax_error")
-    course_grader.grade_folder(copy, results, config, progress=False)
+    course_kit.grader.grade_folder(copy, results, config, progress=False)
     assert graded_again == []  # the same files: the same grading
     (copy / "syntax_error" / "PyRT_Integrators.py").write_text(
         (folder / "right" / "PyRT_Integrators.py").read_text())
-    changed = course_grader.grade_folder(copy, results, config, progress=False)
+    changed = course_kit.grader.grade_folder(copy, results, config, progress=False)
     assert graded_again == ["syntax_error"] and changed[0]["steps"][0]["passed"]
-    course_grader.grade_folder(copy, results, config, force=True, progress=False)
+    course_kit.grader.grade_folder(copy, results, config, force=True, progress=False)
     assert graded_again == ["syntax_error"] * 2
 
 
 def run_step_after(prelude, handout, tmp_path, wall_seconds, core=None):
     """(result, why, output) of step 1.1 run by a StepServer (on `core`, if given) in a copy
     of the handout whose PyRT_Common.py starts with the lines `prelude`."""
-    if course_isolation.unsupported():
-        pytest.skip(course_isolation.unsupported())
+    if course_kit.isolation.unsupported():
+        pytest.skip(course_kit.isolation.unsupported())
     work = shutil.copytree(handout, tmp_path / "work")
     common = work / "PyRT_Common.py"
     common.write_text(prelude + common.read_text())
-    server = course_isolation.StepServer(core)
+    server = course_kit.isolation.StepServer(core)
     try:
         limits = {"cpu_seconds": 60, "wall_seconds": wall_seconds, "memory_mib": 2048,
                   "output_kib": 256}
@@ -707,7 +709,7 @@ def test_a_step_that_sleeps_is_stopped_at_the_wall_clock_limit(handout, tmp_path
 def test_a_step_server_given_a_core_runs_its_steps_there(handout, tmp_path):
     # PyRT's render() starts no workers on one core: the framework graded as a submission
     # then stays in its process, where the guard would refuse the workers
-    core = course_isolation.cores()[-1]
+    core = course_kit.isolation.cores()[-1]
     prints_its_cores = "import os\nprint('cores', sorted(os.sched_getaffinity(0)))\n"
     _, _, output = run_step_after(prints_its_cores, handout, tmp_path, 300, core)
     assert f"cores [{core}]\n" in output
@@ -725,10 +727,10 @@ def test_a_config_that_is_not_right_is_refused_with_the_reason(tmp_path, text, m
     path = tmp_path / "grading.toml"
     path.write_text(text)
     with pytest.raises(ValueError) as error:
-        course_grader.load_config(path)
+        course_kit.grader.load_config(path)
     assert str(error.value).startswith(f"{path}: ") and message in str(error.value)
 
 
 def test_the_default_config_gives_25_points_a_step():
-    config = course_grader.load_config()
+    config = course_kit.grader.load_config()
     assert config.points == dict.fromkeys(("1.1", "1.2", "1.3", "1.4"), 25)

@@ -1,6 +1,6 @@
 """The course kit on submissions of real style: the course's four modules written on the
 course's own base code of the students' edition (tests/course_submissions.py), graded by
-course_grader and run through the students' checks in a handout. Each must get the
+course_kit.grader and run through the students' checks in a handout. Each must get the
 verdict a teaching assistant gives it, step by step: full points for a right one, and
 for a mistake a failure of exactly the steps it breaks, for the reason it is."""
 import json
@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import course_feedback
-import course_grader
-import course_kit
+import course_kit.feedback
+import course_kit.grader
+import course_kit.handout
 import course_submissions as submissions
 from helpers import REPO, run_python
 from test_course_kit import CHECK_TESTS, failures_of_the_checks
@@ -47,8 +47,8 @@ def real_submissions(tmp_path_factory):
 def graded(real_submissions, tmp_path_factory):
     """Every submission of FIXTURES graded once, two at a time, with the kit's settings."""
     results = tmp_path_factory.mktemp("real_results")
-    records = course_grader.grade_folder(real_submissions, results,
-                                         course_grader.load_config(), jobs=2,
+    records = course_kit.grader.grade_folder(real_submissions, results,
+                                         course_kit.grader.load_config(), jobs=2,
                                          progress=False)
     return Graded(results, {record["submission"]: record for record in records})
 
@@ -59,7 +59,7 @@ def checks_run_by_students(real_submissions, tmp_path_factory):
     submission's four files copied over a handout, where `python -m pytest` runs, two
     submissions at a time."""
     base = tmp_path_factory.mktemp("real_checks")
-    handout = course_kit.write_handout(base / "handout")
+    handout = course_kit.handout.write_handout(base / "handout")
 
     def run(name):
         copy = shutil.copytree(handout, base / name)
@@ -102,17 +102,17 @@ def test_each_real_submission_gets_a_teaching_assistants_verdict_step_by_step(gr
 @pytest.mark.parametrize("name", RIGHT)
 def test_a_right_submission_has_nothing_marked_wrong_in_its_feedback(graded, name):
     folder = graded.results / name
-    record = json.loads((folder / course_feedback.RECORD).read_text(encoding="utf-8"))
+    record = json.loads((folder / course_kit.feedback.RECORD).read_text(encoding="utf-8"))
     assert record["total"] == record["max_total"] == 100
     assert record["files"] == dict.fromkeys(submissions.MODULES, "submission")
     failed = [(step["step"], check["name"], check["reason"])
               for step in record["steps"] for check in step["checks"] if not check["passed"]]
     assert failed == []
     assert all(step["checks"] and step["reason"] == "" for step in record["steps"])
-    result = json.loads((folder / course_feedback.GRADESCOPE).read_text(encoding="utf-8"))
+    result = json.loads((folder / course_kit.feedback.GRADESCOPE).read_text(encoding="utf-8"))
     assert result["score"] == 100
     assert [test["status"] for test in result["tests"]] == ["passed"] * 4
-    assert 'class="failed"' not in (folder / course_feedback.FEEDBACK).read_text(
+    assert 'class="failed"' not in (folder / course_kit.feedback.FEEDBACK).read_text(
         encoding="utf-8")
 
 
@@ -158,7 +158,7 @@ def test_a_red_of_255_passes_with_a_note_on_what_differs(graded, checks_run_by_s
     intersection = next(check for check in step["checks"] if check["name"] == "intersection")
     assert intersection["passed"]
     assert intersection["note"].startswith("your red is 255 where PyRT's is 1.")
-    page = (graded.results / name / course_feedback.FEEDBACK).read_text(encoding="utf-8")
+    page = (graded.results / name / course_kit.feedback.FEEDBACK).read_text(encoding="utf-8")
     assert "Worth knowing: your red is 255" in page
     assert checks_run_by_students[name]["test_assignment_1_2_intersection_image"] is None
 

@@ -1,4 +1,4 @@
-"""The isolation of the grader's steps (course_sandbox.py): the choice of a mode, and
+"""The isolation of the grader's steps (course_kit/sandbox.py): the choice of a mode, and
 hostile submissions, written as a student could write them, graded under bubblewrap.
 
 Each hostile submission is the right solution with hostile code in one step. Under
@@ -15,17 +15,17 @@ from pathlib import Path
 
 import pytest
 
-import course_grader
-import course_kit
-import course_sandbox
+import course_kit.grader
+import course_kit.handout
+import course_kit.sandbox
 import course_kit_students as students
 
 UNPRIVILEGED_USER = pytest.mark.skipif(
-    not course_sandbox.other_user_runs_python(),
+    not course_kit.sandbox.other_user_runs_python(),
     reason="no unprivileged user here: it needs root, Linux, and a Python that another "
     "user may run")
 BUBBLEWRAP = pytest.mark.skipif(
-    not course_sandbox.bubblewrap_runs(),
+    not course_kit.sandbox.bubblewrap_runs(),
     reason="bubblewrap cannot run here (Debian and Ubuntu package bubblewrap; CI installs "
     "it): the sandbox's tests need it")
 CONFIG = """\
@@ -127,8 +127,8 @@ def grade(tmp_path, submissions, handout, wall=GENEROUS_WALL, results=None,
         students.write_submission(folder / name, handout, answers)
     config = tmp_path / "grading.toml"
     config.write_text(CONFIG.format(wall=wall))
-    records = course_grader.grade_folder(folder, results or tmp_path / "results",
-                                         course_grader.load_config(config), jobs=2,
+    records = course_kit.grader.grade_folder(folder, results or tmp_path / "results",
+                                         course_kit.grader.load_config(config), jobs=2,
                                          progress=False, isolation=isolation)
     return {record["submission"]: record for record in records}
 
@@ -153,13 +153,13 @@ def processes_of(users):
 def confinements(monkeypatch):
     """The Confinements of the step servers started in the test."""
     made = []
-    original = course_sandbox.confinement
+    original = course_kit.sandbox.confinement
 
     def recording(isolation):
         made.append(original(isolation))
         return made[-1]
 
-    monkeypatch.setattr(course_sandbox, "confinement", recording)
+    monkeypatch.setattr(course_kit.sandbox, "confinement", recording)
     return made
 
 
@@ -171,30 +171,30 @@ def left_running(confinements):
 
 @pytest.fixture(scope="module")
 def handout(tmp_path_factory):
-    return course_kit.write_handout(tmp_path_factory.mktemp("sandbox") / "handout")
+    return course_kit.handout.write_handout(tmp_path_factory.mktemp("sandbox") / "handout")
 
 
 # ------------------------------------------------------------------------------------------
 # The choice of an isolation
 # ------------------------------------------------------------------------------------------
 def test_an_isolation_asked_for_is_taken_and_an_unknown_one_refused():
-    assert course_sandbox.choose("process") == course_sandbox.Isolation("process",
+    assert course_kit.sandbox.choose("process") == course_kit.sandbox.Isolation("process",
                                                                         "asked for")
-    with pytest.raises(course_sandbox.IsolationUnavailable) as error:
-        course_sandbox.choose("docker")
+    with pytest.raises(course_kit.sandbox.IsolationUnavailable) as error:
+        course_kit.sandbox.choose("docker")
     assert str(error.value) == ("unknown isolation 'docker'; the isolations are bubblewrap, "
                                 "unprivileged user, process")
 
 
 def test_without_bwrap_bubblewrap_is_refused_and_a_weaker_isolation_says_why(monkeypatch):
-    monkeypatch.setattr(course_sandbox.shutil, "which", lambda name: None)
-    monkeypatch.setattr(course_sandbox, "bubblewrap_runs", lambda: False)
-    monkeypatch.setattr(course_sandbox, "other_user_runs_python", lambda: False)
-    with pytest.raises(course_sandbox.IsolationUnavailable) as error:
-        course_sandbox.choose("bubblewrap")
+    monkeypatch.setattr(course_kit.sandbox.shutil, "which", lambda name: None)
+    monkeypatch.setattr(course_kit.sandbox, "bubblewrap_runs", lambda: False)
+    monkeypatch.setattr(course_kit.sandbox, "other_user_runs_python", lambda: False)
+    with pytest.raises(course_kit.sandbox.IsolationUnavailable) as error:
+        course_kit.sandbox.choose("bubblewrap")
     assert str(error.value) == ("the isolation bubblewrap cannot run: bwrap is not installed "
                                 "(Debian and Ubuntu package bubblewrap)")
-    chosen = course_sandbox.choose()
+    chosen = course_kit.sandbox.choose()
     assert chosen.mode == "process"
     assert chosen.describe().startswith("process (bwrap is not installed (Debian and Ubuntu "
                                         "package bubblewrap); no unprivileged user: ")
@@ -205,18 +205,18 @@ def test_the_grader_says_which_isolation_it_uses_in_the_terminal_and_the_record(
     folder = tmp_path / "submissions"
     shutil.copytree(handout, folder / "untouched",
                     ignore=lambda _, names: [n for n in names
-                                             if n not in course_kit.COURSE_MODULES])
-    config = course_grader.load_config()
-    records = course_grader.grade_folder(folder, tmp_path / "results", config, jobs=1,
+                                             if n not in course_kit.handout.COURSE_MODULES])
+    config = course_kit.grader.load_config()
+    records = course_kit.grader.grade_folder(folder, tmp_path / "results", config, jobs=1,
                                          progress=False, isolation="process")
     assert capsys.readouterr().out == "Isolation of each step: process (asked for)\n"
     assert records[0]["isolation"] == "process"
 
 
 def test_the_sandbox_shows_no_folder_of_the_grader_but_its_cell(tmp_path):
-    command = course_sandbox.bubblewrap_command(tmp_path / "cell", root=True)
+    command = course_kit.sandbox.bubblewrap_command(tmp_path / "cell", root=True)
     assert command[:2] == ["bwrap", "--die-with-parent"]
-    for option in course_sandbox.NAMESPACES + ("--cap-drop", "--tmpfs"):
+    for option in course_kit.sandbox.NAMESPACES + ("--cap-drop", "--tmpfs"):
         assert option in command
     read_write = [command[at + 1] for at, option in enumerate(command) if option == "--bind"]
     assert read_write == [str(tmp_path / "cell")]
@@ -291,7 +291,7 @@ def test_a_fork_bomb_meets_the_limit_on_processes_and_leaves_nothing_running(
         # The step itself counts: it makes fewer children than the limit
         assert forked and max(forked) < min(made.processes for made in confinements)
         assert left_running(confinements) == []
-    assert all(made.processes == course_sandbox.MAX_PROCESSES
+    assert all(made.processes == course_kit.sandbox.MAX_PROCESSES
                for made in confinements if made.user is not None)
 
 
@@ -310,14 +310,14 @@ def test_a_step_that_sleeps_past_the_wall_clock_limit_is_stopped(handout, tmp_pa
 @BUBBLEWRAP
 def test_the_sandbox_has_no_network_and_shows_none_of_the_graders_folders(tmp_path):
     (tmp_path / "grader's.txt").write_text(SECRET)
-    confinement = course_sandbox.confinement(course_sandbox.Isolation("bubblewrap"))
+    confinement = course_kit.sandbox.confinement(course_kit.sandbox.Isolation("bubblewrap"))
     try:
         probe = [*confinement.wrapper, sys.executable, "-I", "-c",
                  f"import os, socket; print(os.path.exists({str(tmp_path)!r}), "
                  "os.path.isdir(os.getcwd()), socket.if_nameindex())"]
         output = subprocess.run(probe, capture_output=True, text=True, check=True).stdout
     finally:
-        course_sandbox.close_confinement(confinement)
+        course_kit.sandbox.close_confinement(confinement)
     assert output == "False True [(1, 'lo')]\n"
     assert not os.path.exists(confinement.cell)
 
@@ -341,5 +341,5 @@ def test_an_unprivileged_user_cannot_write_outside_read_the_results_or_fork_with
     assert "written by C" not in (others / "PyRT_Core.py").read_text()
     forked = [int(line.split()[1]) for line in steps_of(records["fork_bomb"])["1.4"][
         "output"].splitlines() if line.startswith("forked ")]
-    assert forked and max(forked) < course_sandbox.MAX_PROCESSES
+    assert forked and max(forked) < course_kit.sandbox.MAX_PROCESSES
     assert left_running(confinements) == []

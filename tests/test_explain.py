@@ -1,4 +1,4 @@
-"""A pixel's history (PyRT_Explain.py): the stories of pixels worked out by hand from the
+"""A pixel's history (pyrt/explain.py): the stories of pixels worked out by hand from the
 scenes' numbers in AppRenderer.py (the course's) and from small scenes built here.
 
 The Cornell box of Figure 1 (dist 0.75, side 2): the sphere, object 0, has its centre at
@@ -16,12 +16,12 @@ import sys
 import numpy as np
 import pytest
 
-import PyRT_Acceleration
+import pyrt.acceleration.accelerated
 from AppRenderer import cornell_box_scene, sphere_test_scene
 from helpers import StudentPhongIntegrator, fov90_scene, read_png, render_image
 from PyRT_Core import *
-from PyRT_Explain import explain_pixel, vector
-from PyRT_ExplainPicture import save_picture
+from pyrt.explain import explain_pixel, vector
+from pyrt.explain_picture import save_picture
 from PyRT_Integrators import *
 
 FLOOR_PIXEL = (250, 453)  # of Figure 1, 500 x 500: the floor straight below the sphere
@@ -276,7 +276,7 @@ def test_explain_runs_on_the_plain_queries_while_a_render_has_swapped_them():
     integrator = PhongIntegrator("unused")
     integrator.add_scene(cornell_box_scene(0.75, 2))
     plain = str(explain_pixel(integrator, *FLOOR_PIXEL))
-    with PyRT_Acceleration.accelerated(integrator):
+    with pyrt.acceleration.accelerated.accelerated(integrator):
         fast = vars(integrator.scene)["closest_hit"]
         during = explain_pixel(integrator, *FLOOR_PIXEL)
         assert vars(integrator.scene)["closest_hit"] is fast  # put back as it was

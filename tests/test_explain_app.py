@@ -9,7 +9,7 @@ import cv2
 
 import AppRenderer
 from helpers import APP, read_png, run_python
-from PyRT_Explain import opencv_click
+from pyrt.explain import opencv_click
 from PyRT_Integrators import PhongIntegrator
 
 

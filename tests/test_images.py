@@ -1,4 +1,4 @@
-"""PyRT_Images.py: the three files of a saved image, written whole, and the course's
+"""pyrt/images.py: the three files of a saved image, written whole, and the course's
 tonemapper against OpenCV's."""
 import os
 import stat
@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-import PyRT_Images
+import pyrt.images
 from helpers import PNG_TOLERANCE, read_png, run_python
 from PyRT_Core import Camera, Scene
 
@@ -66,7 +66,7 @@ def test_saved_png_is_the_tonemapped_image(saved):
     image, base = saved
     png = plt.imread(str(base) + ".png")
     assert png.shape[:2] == image.shape[:2]
-    expected = PyRT_Images.tonemap_image(image)
+    expected = pyrt.images.tonemap_image(image)
     np.testing.assert_allclose(png[:, :, :3], expected, atol=1.01 / 255)
 
 
@@ -87,7 +87,7 @@ def test_save_image_before_set_camera_says_to_set_the_camera_and_render(tmp_path
 
 
 def test_save_image_says_when_opencv_cannot_encode_the_hdr_file(tmp_path, monkeypatch):
-    monkeypatch.setattr(PyRT_Images.cv2, "imencode", lambda *args: (False, None))
+    monkeypatch.setattr(pyrt.images.cv2, "imencode", lambda *args: (False, None))
     with pytest.raises(RuntimeError, match=r"^Scene\.save_image: OpenCV could not encode the "
                                            r"HDR image$"):
         scene_with_image(sample_image()).save_image(str(tmp_path / "image"))
@@ -126,7 +126,7 @@ def test_failed_save_keeps_the_previous_file_whole(tmp_path, monkeypatch):
     def crash(source, target):  # the machine stops between writing and renaming
         raise OSError("disk full")
 
-    monkeypatch.setattr(PyRT_Images.os, "replace", crash)
+    monkeypatch.setattr(pyrt.images.os, "replace", crash)
     with pytest.raises(OSError, match="disk full"):
         scene_with_image(np.full((2, 2, 3), 3.0)).save_image(base)
     assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
@@ -136,7 +136,7 @@ def test_save_that_cannot_create_its_file_reports_that_error_alone(tmp_path, mon
     def cannot_create(path, mode):  # no temporary file comes to exist
         raise OSError("too many open files")
 
-    monkeypatch.setattr(PyRT_Images, "open", cannot_create, raising=False)
+    monkeypatch.setattr(pyrt.images, "open", cannot_create, raising=False)
     with pytest.raises(OSError, match="too many open files") as error:
         scene_with_image(np.ones((2, 2, 3))).save_image(str(tmp_path / "picture"))
     assert error.value.__context__ is None  # no second error from cleaning up
@@ -155,13 +155,13 @@ def empty_cv2():
 
 
 def test_installed_opencv_has_everything_pyrt_uses():
-    assert PyRT_Images.opencv_problem() is None
+    assert pyrt.images.opencv_problem() is None
 
 
 def test_an_empty_cv2_is_named_with_what_it_lacks_and_the_command_that_fixes_it(
         monkeypatch):
-    monkeypatch.setattr(PyRT_Images, "cv2", empty_cv2())
-    assert PyRT_Images.opencv_problem() == (
+    monkeypatch.setattr(pyrt.images, "cv2", empty_cv2())
+    assert pyrt.images.opencv_problem() == (
         "OpenCV is broken: the cv2 package (/site-packages/cv2) has no createTonemap, "
         "imencode, imread, cvtColor, utils, as happens when one of opencv-python and "
         "opencv-python-headless is uninstalled while both are installed. Fix it with\n"
@@ -172,7 +172,7 @@ def test_an_empty_cv2_is_named_with_what_it_lacks_and_the_command_that_fixes_it(
 def test_a_save_that_opencv_fails_keeps_the_linear_image_and_names_it(tmp_path, monkeypatch,
                                                                       capsys):
     # as the handout's render() saves: after the whole render
-    monkeypatch.setattr(PyRT_Images, "cv2", empty_cv2())
+    monkeypatch.setattr(pyrt.images, "cv2", empty_cv2())
     image = sample_image()
     with pytest.raises(RuntimeError, match=r"^Scene\.save_image: OpenCV is broken: .* Fix it "
                                            r"with\n    pip install --force-reinstall "):
@@ -246,29 +246,29 @@ def test_tonemap_is_opencvs_default_tonemapper_bit_for_bit(dtype):
     # OpenCV maps the minimum to a tiny negative number and returns its power as NaN;
     # PyRT shows it as 0, the minimum
     expected = np.clip(np.nan_to_num(opencv, nan=0.0), 0.0, 1.0)
-    np.testing.assert_array_equal(PyRT_Images.tonemap_image(image), expected)
+    np.testing.assert_array_equal(pyrt.images.tonemap_image(image), expected)
 
 
 def test_tonemap_maps_an_image_beyond_single_precision_in_double_precision():
     # 1e39 has no single-precision value: OpenCV would see infinity and show NaN
     image = np.array([[[1e39, 0.0, 5e38]], [[2e39, 2e39, 1e39]]])
-    np.testing.assert_allclose(PyRT_Images.tonemap_image(image),
+    np.testing.assert_allclose(pyrt.images.tonemap_image(image),
                                [[[0.5 ** 0.4, 0.0, 0.25 ** 0.4]], [[1.0, 1.0, 0.5 ** 0.4]]],
                                rtol=1e-6)
-    assert (PyRT_Images.tonemap_image(np.full((1, 2, 3), 1e300)) == 1.0).all()  # flat
+    assert (pyrt.images.tonemap_image(np.full((1, 2, 3), 1e300)) == 1.0).all()  # flat
 
 
 def test_tonemap_prints_nothing(tmp_path):
     # OpenCV warns on its first tonemapping in a process; a student must not see it
-    script = ("import numpy as np, PyRT_Images; "
-              "PyRT_Images.tonemap_image(np.random.default_rng(1).random((4, 4, 3)))")
+    script = ("import numpy as np, pyrt.images; "
+              "pyrt.images.tonemap_image(np.random.default_rng(1).random((4, 4, 3)))")
     done = run_python(["-c", script], tmp_path)
     assert done.returncode == 0 and done.stdout == done.stderr == "", done.stderr
 
 
 def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
     image = np.array([[[2.0, 3.0, 6.0], [4.0, 2.5, 5.0]]])
-    out = PyRT_Images.tonemap_image(image)
+    out = pyrt.images.tonemap_image(image)
     assert out[0, 0, 0] == 0.0 and out[0, 0, 2] == pytest.approx(1.0, abs=1e-15)
     # 4 -> (4 - 2)/(6 - 2) = 0.5, then 0.5 ** (1/2.5), in single precision as in OpenCV
     assert out[0, 1, 0] == pytest.approx(0.5 ** 0.4, rel=1e-6)
@@ -282,19 +282,19 @@ def test_tonemap_maps_minimum_to_0_and_maximum_to_1():
 ], ids=["flat", "flat-to-epsilon", "just-not-flat", "negative"])
 def test_tonemap_agrees_with_opencv_on_flat_and_negative_images(image):
     opencv = cv2.createTonemap(gamma=2.5).process(image.copy())
-    np.testing.assert_allclose(PyRT_Images.tonemap_image(image), opencv, rtol=1e-6, atol=1e-7)
+    np.testing.assert_allclose(pyrt.images.tonemap_image(image), opencv, rtol=1e-6, atol=1e-7)
 
 
 @pytest.mark.parametrize("value, shown", [(4.0, 1.0), (-0.5, 0.0)])
 def test_tonemap_shows_a_flat_image_outside_0_to_1_clipped(value, shown):
     # OpenCV leaves a flat image as it is; the course clips the result to [0, 1]
-    assert (PyRT_Images.tonemap_image(np.full((2, 1, 3), value)) == shown).all()
+    assert (pyrt.images.tonemap_image(np.full((2, 1, 3), value)) == shown).all()
 
 
 def test_tonemap_shows_nan_as_darkest_in_an_image_below_zero():
     # finite values from -3 to 1: NaN and -inf are shown as -3, 0; +inf as 1, 1
     image = np.array([[[-3.0, 1.0, np.nan], [-1.0, -np.inf, np.inf]]])
-    assert PyRT_Images.tonemap_image(image) == pytest.approx(
+    assert pyrt.images.tonemap_image(image) == pytest.approx(
         np.array([[[0.0, 1.0, 0.0], [0.5 ** 0.4, 0.0, 1.0]]]), rel=1e-6)
 
 
@@ -305,7 +305,7 @@ def test_tonemap_shows_nan_as_darkest_in_an_image_below_zero():
 ], ids=["linear", "flat", "not-finite"])
 def test_tonemap_gives_single_precision_as_opencv_does(image):
     # cv2.createTonemap().process returns float32, whatever the image holds
-    assert PyRT_Images.tonemap_image(image).dtype == np.float32
+    assert pyrt.images.tonemap_image(image).dtype == np.float32
 
 
 def with_non_finite(a, b, c):
@@ -326,7 +326,7 @@ def with_non_finite(a, b, c):
                          ids=["nan", "inf", "-inf", "all"])
 def test_tonemap_shows_inf_as_brightest_and_nan_or_minus_inf_as_darkest(bad):
     image, shown = with_non_finite(*bad)
-    np.testing.assert_allclose(PyRT_Images.tonemap_image(image), shown, rtol=1e-6, atol=1e-7)
+    np.testing.assert_allclose(pyrt.images.tonemap_image(image), shown, rtol=1e-6, atol=1e-7)
 
 
 def test_saved_png_shows_inf_as_brightest_and_nan_or_minus_inf_as_darkest(tmp_path):

@@ -1,7 +1,7 @@
 """Each figure of the course, rendered at 500 x 500 by `python AppRenderer.py --all-figures`
 as a student renders it, matches its reference image in references/ (made by
 tests/make_references.py) to within one 8-bit step per channel, compared by
-PyRT_Compare.compare_with_reference.
+pyrt.compare.compare_with_reference.
 
 On a mismatch the expected image, the rendered one and their difference (a heat map:
 black where they match, yellow where they differ most) are written to tests/failures/."""
@@ -12,7 +12,7 @@ import pytest
 
 from AppRenderer import FILENAME, figure_integrator
 from make_references import FIGURES
-from PyRT_Compare import compare_with_reference
+from pyrt.compare import compare_with_reference
 
 FAILURES = Path(__file__).resolve().parent / "failures"
 

@@ -1,4 +1,4 @@
-"""PyRT_Rendering.py through Integrator.render(): the progress of a render, Ctrl+C, and
+"""pyrt/rendering.py through Integrator.render(): the progress of a render, Ctrl+C, and
 the checks that give clear errors."""
 import math
 import multiprocessing

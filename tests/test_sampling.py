@@ -1,4 +1,4 @@
-"""PyRT_Sampling.py through Integrator.render(): samples per pixel, where they go
+"""pyrt/sampling.py through Integrator.render(): samples per pixel, where they go
 (strata), uniform and adaptive sampling, and the error estimate."""
 import json
 import math
@@ -7,7 +7,7 @@ import re
 import numpy as np
 import pytest
 
-import PyRT_Sampling
+import pyrt.sampling
 from AppRenderer import sphere_test_scene
 from make_references import SAMPLED_REFERENCE, SAMPLED_REFERENCE_SIZE
 from helpers import (GREY, PNG_TOLERANCE, Constant, PixelGrey, StepAt, fov90_scene,
@@ -110,14 +110,14 @@ def test_sampled_pixels_gives_colour_and_error_of_the_pixels_asked_for_zeros_els
     # LeftHalfWhite with N = 2: mean 1/2 and one pair differing by 1, error 1 / (4 sqrt(2))
     integrator = LeftHalfWhite(str(tmp_path / "img"))
     integrator.add_scene(fov90_scene(3, 2))
-    row = PyRT_Sampling.sampled_pixels(integrator, 1, 2, [1])
+    row = pyrt.sampling.sampled_pixels(integrator, 1, 2, [1])
     error = 1 / (4 * math.sqrt(2))
     assert row[:6] == [0.0] * 6 and row[12:] == [0.0] * 6
     assert row[6:12] == pytest.approx([0.5] * 3 + [error] * 3, rel=1e-15)
     # one sample per pixel: no pair of samples, no spread to estimate an error from
     grey = PixelGrey(str(tmp_path / "img"))
     grey.add_scene(fov90_scene(3, 2))
-    row = PyRT_Sampling.sampled_pixels(grey, 1, 1, [0, 1, 2])
+    row = pyrt.sampling.sampled_pixels(grey, 1, 1, [0, 1, 2])
     assert row[3:6] == row[9:12] == row[15:18] == [0.0] * 3
 
 
@@ -177,7 +177,7 @@ def test_uniform_samples_lie_inside_their_pixel_one_in_each_stratum(samples):
     rows, columns = GRIDS[samples]
     every_cell = sorted((r, c) for r in range(rows) for c in range(columns))
     for y in (0, 7):
-        for points in PyRT_Sampling.pixel_offsets(samples, y, 5):
+        for points in pyrt.sampling.pixel_offsets(samples, y, 5):
             assert all(0.0 <= u < 1.0 and 0.0 <= v < 1.0 for u, v in points)
             # one point in each cell, in the order of the cells: row by row
             assert cells_of(points, rows, columns) == every_cell
@@ -187,7 +187,7 @@ def test_sample_points_are_random_across_and_down_their_cell_independently():
     # where a point lies across its cell says nothing about where it lies down it: over
     # 50 pixels of 4 cells, the two fractions agree nowhere
     rows, columns = GRIDS[4]
-    for points in PyRT_Sampling.pixel_offsets(4, 2, 50):
+    for points in pyrt.sampling.pixel_offsets(4, 2, 50):
         for (u, v), (r, c) in zip(points, cells_of(points, rows, columns)):
             assert abs((u * columns - c) - (v * rows - r)) > 1e-12
 
@@ -273,7 +273,7 @@ def test_sample_map_has_the_image_shape_dark_for_one_ray_bright_for_the_most(tmp
                  adaptive=True)
     rays = read_png(tmp_path / "img_Step_samples.png")
     assert rays.shape == (4, 5, 3)
-    colors = plt.get_cmap(PyRT_Sampling.SAMPLE_MAP_COLORS)
+    colors = plt.get_cmap(pyrt.sampling.SAMPLE_MAP_COLORS)
     fewest, most = colors(0.0)[:3], colors(1.0)[:3]  # 1 ray and 1 + 16 rays
     for x in range(5):
         expected = most if x in (1, 2) else fewest
@@ -284,14 +284,14 @@ def test_refined_pixels_are_both_of_every_pair_of_neighbours_differing_by_more_t
     # a 4 x 5 display, 0.25 everywhere but pixel (2, 1), whose blue channel is 0.5
     display = np.full((4, 5, 3), 0.25)
     display[1, 2, 2] = 0.5
-    refined = PyRT_Sampling.refined_pixels(display, 0.125)
+    refined = pyrt.sampling.refined_pixels(display, 0.125)
     expected = np.zeros((4, 5), dtype=bool)
     expected[1, 1:4] = expected[0:3, 2] = True  # (2, 1) and its four neighbours
     assert refined.dtype == bool and (refined == expected).all()
     # a difference of exactly the tolerance is not more than it
-    assert not PyRT_Sampling.refined_pixels(display, 0.25).any()
+    assert not pyrt.sampling.refined_pixels(display, 0.25).any()
     # tolerance 0: any difference, and no pair of equal neighbours
-    assert (PyRT_Sampling.refined_pixels(display, 0.0) == expected).all()
+    assert (pyrt.sampling.refined_pixels(display, 0.0) == expected).all()
 
 
 class LinearStepAt(Integrator):
@@ -325,7 +325,7 @@ def test_adaptive_render_without_tonemapping_compares_the_colours_the_png_shows(
 
 def sample_map_colours(samples):
     """The colours of 1 ray and of N + 1 rays (a refined pixel's) in the sample map."""
-    colors = plt.get_cmap(PyRT_Sampling.SAMPLE_MAP_COLORS)
+    colors = plt.get_cmap(pyrt.sampling.SAMPLE_MAP_COLORS)
     return colors(0.0)[:3], colors(1.0)[:3]
 
 
@@ -435,7 +435,7 @@ def test_ctrl_c_while_refining_saves_the_centre_rays_image(tmp_path):
     (9, [(0, 1), (2, 3), (4, 5), (6, 7)]),      # 3 x 3: consecutive, the last left out
 ])
 def test_strata_are_paired_with_a_neighbour(samples, pairs):
-    assert PyRT_Sampling.stratum_pairs(samples) == pairs
+    assert pyrt.sampling.stratum_pairs(samples) == pairs
 
 
 @pytest.mark.parametrize("samples, weight", [
@@ -444,7 +444,7 @@ def test_strata_are_paired_with_a_neighbour(samples, pairs):
     (9, 1 / (math.sqrt(2) * 8 * 9)),    # P = 4 pairs
 ])
 def test_error_variance_weight_is_one_over_sqrt2_2P_N(samples, weight):
-    assert PyRT_Sampling.error_variance_weight(samples) == pytest.approx(weight, rel=1e-15)
+    assert pyrt.sampling.error_variance_weight(samples) == pytest.approx(weight, rel=1e-15)
 
 
 class LeftHalfWhite(Integrator):

@@ -1,4 +1,4 @@
-"""PyRT_ScalarIntersections.py: each scalar test finds the distance, hit point and normal
+"""pyrt/scalar_intersections.py: each scalar test finds the distance, hit point and normal
 that its primitive's intersect finds, bit for bit, and the shorter test of walls along the
 axes finds, for camera rays, what the general parallelogram test finds."""
 import math
@@ -6,10 +6,10 @@ import math
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from PyRT_Acceleration import _object_test
+from pyrt.acceleration.queries import _object_test
 from PyRT_Common import *
 from PyRT_Core import *
-from PyRT_ScalarIntersections import (POINT_AND_NORMAL, aligned_wall_distance, camera_test,
+from pyrt.scalar_intersections import (POINT_AND_NORMAL, aligned_wall_distance, camera_test,
                                       parallelogram_distance)
 
 PROPERTY = settings(max_examples=300, deadline=None)

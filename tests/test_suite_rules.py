@@ -1,7 +1,8 @@
 """The rules the test files keep, so that a red test means what it says: every match=
 pattern is a regular expression written as one or quoted text escaped with re.escape,
-helpers are defined once (in helpers.py), and tests/hunt_flaky.py, which hunts for tests
-that fail by chance, reports every test that failed with the seed of its run."""
+helpers are defined once (in helpers.py), no test file is over MAX_TEST_FILE_LINES, and
+tests/hunt_flaky.py, which hunts for tests that fail by chance, reports every test that
+failed with the seed of its run."""
 import ast
 import io
 import multiprocessing
@@ -14,6 +15,8 @@ from helpers import REPO, run_python
 TESTS = REPO / "tests"
 TEST_FILES = sorted(TESTS.glob("test_*.py"))
 METACHARACTERS = set(".^$*+?{}[]|()\\")
+# A test file checks one concern of one module; one that grows past this is split by concern
+MAX_TEST_FILE_LINES = 800
 FSTRING_START = getattr(tokenize, "FSTRING_START", None)
 FSTRING_END = getattr(tokenize, "FSTRING_END", None)
 
@@ -123,6 +126,13 @@ def test_each_helper_is_defined_in_one_test_module_only():
         for body, name in helper_definitions(path).items():
             seen.setdefault(body, []).append(f"{path.name}:{name}")
     assert [places for places in seen.values() if len(places) > 1] == []
+
+
+def test_no_test_file_is_over_the_line_limit():
+    lengths = {path.name: len(path.read_text(encoding="utf-8").splitlines())
+               for path in sorted(TESTS.glob("*.py"))}
+    assert {name: lines for name, lines in lengths.items()
+            if lines > MAX_TEST_FILE_LINES} == {}
 
 
 SAMPLE_TESTS = '''

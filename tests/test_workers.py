@@ -1,4 +1,4 @@
-"""PyRT_Workers.py through Integrator.render(): rendering in several processes (fork,
+"""pyrt/workers.py through Integrator.render(): rendering in several processes (fork,
 spawn and forkserver: PYRT_START_METHOD chooses for the whole suite), how the work is
 split, errors in worker processes and scripts without the main guard."""
 import contextlib
@@ -15,8 +15,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-import PyRT_Sampling
-import PyRT_Workers
+import pyrt.sampling
+import pyrt.workers
 from AppRenderer import sphere_test_scene
 from helpers import (PixelGrey, StepAt, fov90_scene, render_image, run_python,
                      small_cornell_box, wait_for_file)
@@ -130,7 +130,7 @@ def test_error_that_cannot_leave_a_worker_is_raised_as_its_text(tmp_path, worker
 def test_the_variable_chooses_how_worker_processes_start(monkeypatch):
     for method in multiprocessing.get_all_start_methods():
         monkeypatch.setenv("PYRT_START_METHOD", method)
-        assert PyRT_Workers.start_method() == method
+        assert pyrt.workers.start_method() == method
 
 
 def test_a_start_method_the_system_lacks_is_refused_with_those_it_has(monkeypatch):
@@ -138,7 +138,7 @@ def test_a_start_method_the_system_lacks_is_refused_with_those_it_has(monkeypatc
     with pytest.raises(ValueError, match=re.escape(
             "PYRT_START_METHOD='thread': this system's start methods are "
             + ", ".join(multiprocessing.get_all_start_methods()))):
-        PyRT_Workers.start_method()
+        pyrt.workers.start_method()
 
 
 @pytest.mark.parametrize("version, systems_methods, chosen", [
@@ -153,8 +153,8 @@ def test_unless_chosen_workers_start_as_the_system_says_but_never_fork_from_3_12
     monkeypatch.delenv("PYRT_START_METHOD", raising=False)
     monkeypatch.setattr(multiprocessing, "get_start_method", lambda allow_none: None)
     monkeypatch.setattr(multiprocessing, "get_all_start_methods", lambda: systems_methods)
-    monkeypatch.setattr(PyRT_Workers, "sys", SimpleNamespace(version_info=version))
-    assert PyRT_Workers.start_method() == chosen
+    monkeypatch.setattr(pyrt.workers, "sys", SimpleNamespace(version_info=version))
+    assert pyrt.workers.start_method() == chosen
 
 
 @pytest.mark.parametrize("version, scripts_method, chosen", [
@@ -164,16 +164,16 @@ def test_the_method_a_script_set_is_kept_but_fork_from_3_12(monkeypatch, version
                                                              scripts_method, chosen):
     monkeypatch.delenv("PYRT_START_METHOD", raising=False)
     monkeypatch.setattr(multiprocessing, "get_start_method", lambda allow_none: scripts_method)
-    monkeypatch.setattr(PyRT_Workers, "sys", SimpleNamespace(version_info=version))
-    assert PyRT_Workers.start_method() == chosen
+    monkeypatch.setattr(pyrt.workers, "sys", SimpleNamespace(version_info=version))
+    assert pyrt.workers.start_method() == chosen
 
 
 @pytest.mark.skipif("fork" not in multiprocessing.get_all_start_methods(),
                     reason="this system has no fork")
 def test_the_variable_chooses_fork_even_from_3_12(monkeypatch):
     monkeypatch.setenv("PYRT_START_METHOD", "fork")
-    monkeypatch.setattr(PyRT_Workers, "sys", SimpleNamespace(version_info=(3, 13)))
-    assert PyRT_Workers.start_method() == "fork"
+    monkeypatch.setattr(pyrt.workers, "sys", SimpleNamespace(version_info=(3, 13)))
+    assert pyrt.workers.start_method() == "fork"
 
 
 @pytest.mark.skipif(os.environ.get("PYRT_START_METHOD") == "fork",
@@ -192,18 +192,18 @@ def test_a_render_with_workers_starts_them_without_a_warning(tmp_path, worker_fi
 
 def test_rows_are_cut_into_blocks_that_shrink_towards_the_end():
     # each block takes a quarter of the rows left per process, at least one row
-    assert PyRT_Workers._row_blocks(0, 50, 1) == [
+    assert pyrt.workers._row_blocks(0, 50, 1) == [
         (0, 12), (12, 21), (21, 28), (28, 33), (33, 37), (37, 40), (40, 42), (42, 44),
         (44, 45), (45, 46), (46, 47), (47, 48), (48, 49), (49, 50)]
-    assert PyRT_Workers._row_blocks(1, 20, 2) == [  # 19 // 8, 17 // 8, 15 // 8, ...
+    assert pyrt.workers._row_blocks(1, 20, 2) == [  # 19 // 8, 17 // 8, 15 // 8, ...
         (1, 3), (3, 5)] + [(y, y + 1) for y in range(5, 20)]
-    assert PyRT_Workers._row_blocks(5, 5, 2) == []
+    assert pyrt.workers._row_blocks(5, 5, 2) == []
 
 
 def test_renders_too_short_for_workers_stay_in_one_process_long_ones_use_every_core():
-    assert PyRT_Workers.worker_count(0.0) == 1
-    assert PyRT_Workers.worker_count(0.01) == 1
-    assert PyRT_Workers.worker_count(1000.0) == PyRT_Workers.usable_cores()
+    assert pyrt.workers.worker_count(0.0) == 1
+    assert pyrt.workers.worker_count(0.01) == 1
+    assert pyrt.workers.worker_count(1000.0) == pyrt.workers.usable_cores()
 
 
 @pytest.mark.skipif(not hasattr(os, "sched_setaffinity"), reason="no CPU affinity here")
@@ -211,10 +211,10 @@ def test_usable_cores_are_those_this_process_may_run_on():
     allowed = os.sched_getaffinity(0)
     try:
         os.sched_setaffinity(0, {min(allowed)})
-        assert PyRT_Workers.usable_cores() == 1
+        assert pyrt.workers.usable_cores() == 1
     finally:
         os.sched_setaffinity(0, allowed)
-    assert PyRT_Workers.usable_cores() == len(allowed)
+    assert pyrt.workers.usable_cores() == len(allowed)
 
 
 @pytest.mark.parametrize("cpu_count, cores", [(4, 4), (None, 1)])
@@ -223,25 +223,25 @@ def test_usable_cores_without_affinity_are_the_cores_of_the_machine(monkeypatch,
     # as on Windows and macOS; os.cpu_count() gives None when it cannot tell
     monkeypatch.delattr(os, "sched_getaffinity", raising=False)
     monkeypatch.setattr(os, "cpu_count", lambda: cpu_count)
-    assert PyRT_Workers.usable_cores() == cores
+    assert pyrt.workers.usable_cores() == cores
 
 
 # The worker process's function, called here in this process: it renders the blocks it
 # takes into the shared image, then sends one message.
 def run_worker(integrator, blocks, taken_before=0):
-    """Runs PyRT_Workers._worker on integrator's image cut into blocks, after this process
+    """Runs pyrt.workers._worker on integrator's image cut into blocks, after this process
     took the first `taken_before` blocks: (the shared image, its finished flags, the
     message the worker sent, the Ctrl+C handler the worker left)."""
     camera = integrator.scene.camera
-    mp = multiprocessing.get_context(PyRT_Workers.start_method())
-    shared = PyRT_Workers._SharedImage(mp, (camera.height, camera.width, 3), len(blocks))
+    mp = multiprocessing.get_context(pyrt.workers.start_method())
+    shared = pyrt.workers._SharedImage(mp, (camera.height, camera.width, 3), len(blocks))
     for _ in range(taken_before):
         shared.take()
     receiver, sender = multiprocessing.Pipe(duplex=False)
     ctrl_c = signal.getsignal(signal.SIGINT)
     try:
-        PyRT_Workers._worker(pickle.dumps(integrator), blocks,
-                               PyRT_Sampling._CourseRows(1), shared, sender)
+        pyrt.workers._worker(pickle.dumps(integrator), blocks,
+                               pyrt.sampling._CourseRows(1), shared, sender)
         worker_ctrl_c = signal.getsignal(signal.SIGINT)
     finally:
         signal.signal(signal.SIGINT, ctrl_c)
@@ -504,7 +504,7 @@ def render_normal_with_two_workers(filename):
 def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_path):
     # A teaching assistant may render every student's integrator in a multiprocessing.Pool,
     # whose (daemonic) workers may not start processes of their own.
-    with multiprocessing.get_context(PyRT_Workers.start_method()).Pool(1) as pool:
+    with multiprocessing.get_context(pyrt.workers.start_method()).Pool(1) as pool:
         image, err = pool.apply(render_normal_with_two_workers, (str(tmp_path / "pooled"),))
     assert err.splitlines() == [
         "PyRT: rendering in one process: this process is itself a daemonic worker process "
@@ -513,7 +513,7 @@ def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_pat
 
 
 class TickingClock:
-    """A perf_counter for PyRT_Workers and PyRT_Sampling that moves on `tick` seconds at
+    """A perf_counter for pyrt.workers and pyrt.sampling that moves on `tick` seconds at
     every reading: a render takes the time the test says, however loaded the machine is."""
 
     def __init__(self, tick):
@@ -526,9 +526,9 @@ class TickingClock:
 
 def with_clock_and_two_cores(monkeypatch, tick):
     clock = SimpleNamespace(perf_counter=TickingClock(tick))
-    monkeypatch.setattr(PyRT_Workers, "time", clock)
-    monkeypatch.setattr(PyRT_Sampling, "time", clock)
-    monkeypatch.setattr(PyRT_Workers, "usable_cores", lambda: 2)
+    monkeypatch.setattr(pyrt.workers, "time", clock)
+    monkeypatch.setattr(pyrt.sampling, "time", clock)
+    monkeypatch.setattr(pyrt.workers, "usable_cores", lambda: 2)
 
 
 def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch):
@@ -541,7 +541,7 @@ def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch
     def no_workers(*args):
         raise AssertionError("a short render started worker processes")
 
-    monkeypatch.setattr(PyRT_Workers, "_render_with_workers", no_workers)
+    monkeypatch.setattr(pyrt.workers, "_render_with_workers", no_workers)
     image = render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4),
                          samples_per_pixel=4, adaptive=True)  # workers=None: all cores
     assert (image[:, 0] == 1.0).all() and (image[:, 3:] == 0.0).all()
@@ -556,13 +556,13 @@ def test_long_render_with_all_cores_renders_each_pass_with_a_worker_per_other_co
     # pixels of 20 with 4 rays each would take 3 * 8 * 4 / 20 = 4.8 s: rows 0 to 3 again.
     with_clock_and_two_cores(monkeypatch, 1.0)
     passes = []
-    with_workers = PyRT_Workers._render_with_workers
+    with_workers = pyrt.workers._render_with_workers
 
     def recorded(camera, blocks, rows, count, *args):
         passes.append((type(rows).__name__, blocks, count))
         yield from with_workers(camera, blocks, rows, count, *args)
 
-    monkeypatch.setattr(PyRT_Workers, "_render_with_workers", recorded)
+    monkeypatch.setattr(pyrt.workers, "_render_with_workers", recorded)
     image = render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4),
                          samples_per_pixel=4, adaptive=True)
     assert passes == [("_CourseRows", [(1, 2), (2, 3), (3, 4)], 1),
@@ -578,13 +578,13 @@ def test_render_with_two_workers_renders_every_pass_with_them(tmp_path, monkeypa
                                                               passes_made):
     # however short the render: workers=2 is an order
     passes = []
-    with_workers = PyRT_Workers._render_with_workers
+    with_workers = pyrt.workers._render_with_workers
 
     def recorded(camera, blocks, rows, *args):
         passes.append(type(rows).__name__)
         yield from with_workers(camera, blocks, rows, *args)
 
-    monkeypatch.setattr(PyRT_Workers, "_render_with_workers", recorded)
+    monkeypatch.setattr(pyrt.workers, "_render_with_workers", recorded)
     render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 8), workers=2,
                  samples_per_pixel=4, adaptive=adaptive)
     assert passes == passes_made

@@ -1,7 +1,7 @@
 # A student's script in the style of the 2025-26 handout's AppRenderer.py: the handout's
 # sphere_scene with its environment map, its output path (a Windows one) and the student's
 # own rendering loop of Assignment 1.2, over the columns x and then the rows y, with the
-# progress printed after each column. tests/test_app.py runs it unchanged, without a
+# progress printed after each column. tests/test_app_scenes.py runs it unchanged, without a
 # screen, from a folder holding env_maps/arch_nozero.hdr.
 import time
 

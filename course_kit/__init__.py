@@ -1,0 +1,17 @@
+"""The course kit of Practice 1, for teaching assistants: the students' handout made from
+this framework, the grader of what they hand in and Gradescope's autograder.
+
+    handout      the handout: the course modules with the solutions cut out (handout.py)
+    grader       grades a folder of submissions (grader.py), each step in a process of its
+                 own (isolation.py, the step server) inside a sandbox (sandbox.py), and
+                 writes the reports (feedback.py)
+    autograder   Gradescope's zip and its run (autograder.py)
+    references   the checks' expected images (references.py, with the course's own
+                 arithmetic: arithmetic.py)
+    checks/      the students' checks, shipped in the handout's tests/
+    grading.toml points, limits and visibilities
+
+The kit sits on top of everything: it imports PyRT and the course modules, never the other
+way. Its command line is `python -m course_kit` (__main__.py); docs/course-kit.md is the
+guide.
+"""

@@ -1,0 +1,413 @@
+"""The grader of Practice 1: `python -m course_kit grade SUBMISSIONS --out RESULTS`.
+
+Every entry of SUBMISSIONS (a folder or a .zip) is one submission: the course modules it
+holds (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py, wherever they
+lie in it; the shallowest of each name counts) are copied over a fresh copy of the
+handout, and each assignment step's checks (course_kit/checks/practice1_checks.py, the students'
+own checks) run there in a process of their own (course_kit/isolation.py) with limits of
+time, memory and output, isolated as course_kit/sandbox.py chooses (bubblewrap's sandbox, an
+unprivileged user, or the process alone). The submissions themselves are only read.
+
+RESULTS gets grades.csv, and for each submission a folder with feedback.html, results.json
+(Gradescope's format), grading.json (the grader's record) and the images of the checks
+that failed. A submission whose grading.json shows the same files, checks and settings is
+not graded again, unless force is asked.
+"""
+import hashlib
+import json
+import os
+import queue
+import shutil
+import sys
+import tempfile
+import time
+import zipfile
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from pathlib import Path, PurePosixPath
+
+from tqdm import tqdm
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # tomllib came with Python 3.11; tomli is the same reader, for Python 3.10
+    import tomli as tomllib
+
+import course_kit.feedback
+import course_kit.isolation
+import course_kit.handout
+import course_kit.sandbox
+
+CONFIG = course_kit.handout.KIT / "grading.toml"
+STEP_TITLES = {
+    "1.1": "Assignment 1.1: the render loop (Lazy integrator)",
+    "1.2": "Assignment 1.2: any_hit and the Intersection integrator",
+    "1.3": "Assignment 1.3: the Depth and Normal integrators",
+    "1.4": "Assignment 1.4: the Phong integrator",
+}
+LIMIT_NAMES = ("cpu_seconds", "wall_seconds", "memory_mib", "output_kib")
+# When students see what Gradescope shows: the tests (visibility) and what the grader
+# printed (stdout_visibility); the defaults are what results.json has always said
+GRADESCOPE_DEFAULTS = {"visibility": "visible", "stdout_visibility": "hidden"}
+VISIBILITIES = ("hidden", "visible", "after_due_date", "after_published")
+MAX_MODULE_BYTES = 1024 * 1024  # a course module larger than this is not taken
+OUTPUT_SHOWN = 4000  # characters of a step's output kept for the feedback
+REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
+
+
+# ------------------------------------------------------------------------------------------
+# Settings
+# ------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Config:
+    """The points of each step, the limits of a step's process and Gradescope's
+    visibilities (course_kit/grading.toml)."""
+
+    points: dict
+    limits: dict
+    text: str  # the file's text, part of what makes a grading repeatable
+    gradescope: dict = field(default_factory=lambda: dict(GRADESCOPE_DEFAULTS))
+
+
+def load_config(path=CONFIG):
+    path = Path(path)
+    text = path.read_text(encoding="utf-8")
+    try:
+        settings = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path}: {error}") from None
+    points, limits = settings.get("points", {}), settings.get("limits", {})
+    steps = list(STEP_TITLES)
+    if sorted(points) != steps or sorted(limits) != sorted(LIMIT_NAMES):
+        raise ValueError(f"{path}: [points] must give the steps {', '.join(steps)} and "
+                         f"[limits] {', '.join(LIMIT_NAMES)}")
+    for table, values in (("points", points), ("limits", limits)):
+        for key, value in values.items():
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
+                    value > 0 or (table == "points" and value == 0)):
+                raise ValueError(f"{path}: [{table}] {key} must be a positive number, "
+                                 f"got {value!r}")
+    gradescope = {**GRADESCOPE_DEFAULTS, **settings.get("gradescope", {})}
+    if sorted(gradescope) != sorted(GRADESCOPE_DEFAULTS):
+        raise ValueError(f"{path}: [gradescope] may give only "
+                         + ", ".join(GRADESCOPE_DEFAULTS))
+    for key, value in gradescope.items():
+        if value not in VISIBILITIES:
+            raise ValueError(f"{path}: [gradescope] {key} must be one of "
+                             f"{', '.join(VISIBILITIES)}, got {value!r}")
+    return Config({step: points[step] for step in steps}, dict(limits), text, gradescope)
+
+
+# ------------------------------------------------------------------------------------------
+# Submissions
+# ------------------------------------------------------------------------------------------
+@dataclass
+class Submission:
+    """What one student handed in: its name (the folder's, or the zip's without .zip), the
+    course modules found in it, and what stood in the way of reading it."""
+
+    name: str
+    path: Path
+    files: dict = field(default_factory=dict)  # module name -> bytes
+    problems: list = field(default_factory=list)
+
+    def digest(self):
+        sha = hashlib.sha256()
+        for name in sorted(self.files):
+            sha.update(name.encode() + b"\0" + self.files[name] + b"\0")
+        for problem in self.problems:
+            sha.update(problem.encode() + b"\0")
+        return sha.hexdigest()
+
+
+def find_submissions(folder):
+    """The submissions of folder, sorted by name: its folders and .zip files (hidden ones
+    left out)."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise FileNotFoundError(f"{folder} is not a folder of submissions")
+    submissions = {}
+    for entry in sorted(folder.iterdir()):
+        if entry.name.startswith("."):
+            continue
+        if entry.is_dir():
+            submission = read_submission(entry.name, entry)
+        elif entry.suffix.lower() == ".zip" and entry.is_file():
+            submission = read_submission(entry.stem, entry)
+        else:
+            continue
+        if submission.name in submissions:
+            raise ValueError(f"two submissions are called {submission.name!r}: "
+                             f"{submissions[submission.name].path} and {entry}")
+        submissions[submission.name] = submission
+    return list(submissions.values())
+
+
+def read_submission(name, path):
+    """The Submission called name whose files are the folder or .zip file at path."""
+    submission = Submission(name, Path(path))
+    if submission.path.is_dir():
+        _read_folder(submission)
+    else:
+        _read_zip(submission)
+    return submission
+
+
+def _shallowest(paths):
+    """{module name: the shallowest of paths (PurePosixPath) with that name}."""
+    chosen = {}
+    for path in sorted(paths, key=lambda p: (len(p.parts), str(p))):
+        if path.name in course_kit.handout.COURSE_MODULES:
+            chosen.setdefault(path.name, path)
+    return chosen
+
+
+def _take(submission, name, size, read):
+    if size > MAX_MODULE_BYTES:
+        submission.problems.append(f"{name} is larger than {MAX_MODULE_BYTES} bytes: not "
+                                   "taken, the handout's is used")
+    else:
+        submission.files[name] = read()
+
+
+def _read_folder(submission):
+    root = submission.path
+    paths = []
+    for folder, folders, names in os.walk(root):  # symbolic links are not followed
+        folders.sort()
+        for name in names:
+            path = Path(folder) / name
+            if not path.is_symlink():
+                paths.append(PurePosixPath(path.relative_to(root).as_posix()))
+    for name, path in _shallowest(paths).items():
+        full = root / path
+        _take(submission, name, full.stat().st_size, full.read_bytes)
+
+
+def _read_zip(submission):
+    try:
+        with zipfile.ZipFile(submission.path) as archive:
+            members = {PurePosixPath(info.filename): info for info in archive.infolist()
+                       if not info.is_dir() and ".." not in PurePosixPath(info.filename).parts
+                       and not info.filename.startswith("/")}
+            for name, path in _shallowest(members).items():
+                info = members[path]
+                _take(submission, name, info.file_size,
+                      lambda info=info: archive.read(info))
+    except (zipfile.BadZipFile, OSError) as error:
+        submission.problems.append(f"{submission.path.name} is not a readable zip file "
+                                   f"({error})")
+
+
+# ------------------------------------------------------------------------------------------
+# Running the steps
+# ------------------------------------------------------------------------------------------
+def framework_machinery():
+    """The modules of PyRT's machinery that the handout leaves out (pyrt/rendering.py, ...),
+    as paths relative to the repository: the working copies hold them too, so that the
+    finished framework itself can be graded."""
+    shipped = set(course_kit.handout.SHIPPED_AS_IS)
+    repo = course_kit.handout.REPO
+    return [path.relative_to(repo) for path in sorted((repo / "pyrt").rglob("*.py"))
+            if path.relative_to(repo).as_posix() not in shipped]
+
+
+def grade_steps(submission, template, scratch, config, server):
+    """The verdicts of every step for submission, its working copy made in scratch, its
+    steps run by server (a course_kit.isolation.StepServer)."""
+    workdir = scratch / "work"
+    shutil.copytree(template, workdir)
+    for path in framework_machinery():
+        (workdir / path).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(course_kit.handout.REPO / path, workdir / path)
+    for name, content in submission.files.items():
+        (workdir / name).write_bytes(content)
+    course_kit.sandbox.hand_over(scratch, workdir, server.confinement.user)
+    images = scratch / "images"
+    verdicts = []
+    for step, title in STEP_TITLES.items():
+        result, why, output = server.run_step(workdir, scratch, step, config.limits)
+        verdict = {"step": step, "title": title, "max_points": config.points[step],
+                   "output": output[-OUTPUT_SHOWN:], "checks": []}
+        if result is None:
+            verdict.update(passed=False, reason=why)
+        else:
+            # the system's doing, not the student's: grade_submission takes it out
+            verdict["limits_not_set"] = result["limits_not_set"]
+            verdict["checks"] = [_kept_images(check, step, images)
+                                 for check in result["checks"]]
+            failed = [check for check in verdict["checks"] if not check["passed"]]
+            if result["refused"]:
+                reason = "refused: " + "; ".join(dict.fromkeys(result["refused"]))
+            elif failed:
+                reason = course_kit.feedback.check_reason(failed[0])
+            else:
+                reason = ""
+            verdict.update(passed=not reason, reason=reason)
+        verdict["points"] = verdict["max_points"] if verdict["passed"] else 0
+        verdicts.append(verdict)
+    return verdicts
+
+
+def _kept_images(check, step, images):
+    """check, with its images copied out of the working copy into images/ as
+    <step>_<check>_<kind>.png."""
+    kept = {}
+    for kind, path in check["images"].items():
+        target = images / f"{step}_{check['name']}_{kind}.png"
+        if Path(path).is_file():
+            images.mkdir(exist_ok=True)
+            shutil.copyfile(path, target)
+            kept[kind] = f"images/{target.name}"
+    return dict(check, images=kept)
+
+
+# ------------------------------------------------------------------------------------------
+# Grading a folder
+# ------------------------------------------------------------------------------------------
+def kit_fingerprint(config):
+    """What else decides a grade besides the submission: the handout with its checks and
+    expected images, the step's process and the settings."""
+    sha = hashlib.sha256()
+    for name, content in course_kit.handout.handout_files().items():
+        sha.update(name.encode() + b"\0" + content + b"\0")
+    machinery = [course_kit.handout.REPO / path for path in framework_machinery()]
+    for path in machinery + [Path(course_kit.isolation.__file__),
+                             Path(course_kit.sandbox.__file__)]:
+        sha.update(path.read_bytes())
+    sha.update(config.text.encode())
+    return sha.hexdigest()
+
+
+def grade_submission(submission, template, results, config, kit, servers, isolation):
+    """Grades one submission and writes its folder of results; returns its record. Its
+    steps run on a step server taken from the queue servers, and given back, isolated
+    as isolation (a course_kit.sandbox.Isolation) says."""
+    fingerprint = hashlib.sha256((submission.digest() + kit).encode()).hexdigest()
+    start = time.monotonic()
+    server = servers.get()
+    try:  # the server's next submission comes once this one's working copy is gone
+        with tempfile.TemporaryDirectory(prefix=f"pyrt-grading-{os.getpid()}-",
+                                         dir=server.confinement.cell) as scratch:
+            scratch = Path(scratch)
+            steps = grade_steps(submission, template, scratch, config, server)
+            limits_not_set = sorted({line for step in steps
+                                     for line in step.pop("limits_not_set", ())})
+            record = {
+                "submission": submission.name,
+                "fingerprint": fingerprint,
+                "files": {name: "submission" if name in submission.files else "handout"
+                          for name in course_kit.handout.COURSE_MODULES},
+                "problems": submission.problems,
+                "isolation": isolation.mode,
+                "steps": steps,
+                "total": sum(step["points"] for step in steps),
+                "max_total": sum(config.points.values()),
+                "seconds": round(time.monotonic() - start, 2),
+                "limits_not_set": limits_not_set,
+            }
+            folder = results / submission.name
+            if folder.exists():
+                shutil.rmtree(folder)
+            folder.mkdir(parents=True)
+            if (scratch / "images").is_dir():
+                shutil.copytree(scratch / "images", folder / "images")
+    finally:
+        servers.put(server)
+    course_kit.feedback.write_submission_reports(record, folder, config.gradescope)
+    return record
+
+
+def recorded(results, submission, kit):
+    """The record of an earlier grading of submission, when it is still valid; else None."""
+    path = results / submission.name / course_kit.feedback.RECORD
+    try:
+        record = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    fingerprint = hashlib.sha256((submission.digest() + kit).encode()).hexdigest()
+    return record if record.get("fingerprint") == fingerprint else None
+
+
+def grade_folder(submissions_folder, results, config, jobs=None, force=False, progress=True,
+                 isolation=None):
+    """Grades every submission of submissions_folder into results (see the module's
+    docstring and grade_submissions); returns the records, sorted by submission."""
+    return grade_submissions(find_submissions(submissions_folder), results, config, jobs,
+                             force, progress, isolation)
+
+
+def grade_submissions(submissions, results, config, jobs=None, force=False, progress=True,
+                      isolation=None):
+    """Grades the Submissions into results (see the module's docstring), their steps
+    isolated as course_kit.sandbox.choose(isolation) says, which it prints; returns their
+    records, in the order of submissions."""
+    results = Path(results)
+    results.mkdir(parents=True, exist_ok=True)
+    isolation = course_kit.sandbox.choose(isolation)
+    print(f"Isolation of each step: {isolation.describe()}", flush=True)
+    if isolation.mode == "unprivileged user":
+        results.chmod(0o700)  # the steps' users may read what all may read
+    kit = kit_fingerprint(config) + isolation.mode
+    records = {}
+    if not force:
+        for submission in submissions:
+            record = recorded(results, submission, kit)
+            if record is not None:
+                records[submission.name] = record
+    todo = [submission for submission in submissions if submission.name not in records]
+    jobs = min(jobs or os.cpu_count() or 1, len(todo)) or 1
+    servers = queue.Queue()
+    with tempfile.TemporaryDirectory(prefix="pyrt-handout-") as template:
+        template = course_kit.handout.write_handout(Path(template) / "handout")
+        try:
+            cores = course_kit.isolation.cores()
+            for index in range(jobs if todo else 0):
+                servers.put(course_kit.isolation.StepServer(
+                    cores[index % len(cores)], course_kit.sandbox.confinement(isolation)))
+            # The pool ends before the servers close: a submission still being graded
+            # gives its server back first, and one not started yet never waits for one
+            with ThreadPoolExecutor(max_workers=jobs) as pool:
+                running = [pool.submit(grade_submission, submission, template, results,
+                                       config, kit, servers, isolation)
+                           for submission in todo]
+                try:
+                    for done in tqdm(as_completed(running), total=len(running),
+                                     unit="submission", desc="grading",
+                                     disable=not progress or not running):
+                        record = done.result()
+                        records[record["submission"]] = record
+                except BaseException:
+                    for future in running:
+                        future.cancel()
+                    raise
+        finally:
+            while not servers.empty():
+                server = servers.get()
+                server.close()
+                course_kit.sandbox.close_confinement(server.confinement)
+    ordered = [records[submission.name] for submission in submissions]
+    course_kit.feedback.write_grades(ordered, results / "grades.csv", REASON_LENGTH)
+    limits_not_set = sorted({line for record in ordered
+                             for line in record.get("limits_not_set", ())})
+    if limits_not_set:
+        print("course_kit grade: this system refused some limits of a step's process, "
+              "so the steps ran without them (no grade suffers for it): "
+              + "; ".join(limits_not_set), file=sys.stderr)
+    return ordered
+
+
+def main(args):
+    unsupported = course_kit.isolation.unsupported()
+    if unsupported:
+        sys.exit(f"course_kit grade: {unsupported}")
+    try:
+        config = load_config(args.config or CONFIG)
+        if args.jobs is not None and args.jobs < 1:
+            raise ValueError(f"--jobs must be 1 or more, got {args.jobs}")
+        records = grade_folder(args.submissions, args.out, config, args.jobs, args.force,
+                               isolation=args.isolation)
+    except (ValueError, FileNotFoundError) as error:
+        sys.exit(f"course_kit grade: {error}")
+    print(f"The grades of {len(records)} submissions: {Path(args.out) / 'grades.csv'}")
+    return 0

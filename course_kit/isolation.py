@@ -1,0 +1,387 @@
+"""One step of the students' checks run on one submission's working copy, in a process of
+its own, for the grader (course_kit/grader.py).
+
+The processes are forked by a step server, `python -I -B course_kit/isolation.py [--core N]`
+(the other options: see Confinement), that has loaded what every course module loads
+(numpy, OpenCV, matplotlib) once, so that a step's process starts at once; each is still
+new, and shares nothing with the others. A server given a core runs on that core alone,
+and so do its steps' processes: the grader gives each server a core of its own, and PyRT's
+own render() (the finished framework graded as a submission) then stays in its process
+instead of starting workers. The server reads one request per line on its standard input
+(JSON: workdir, step, result, log, limits), forks the step's process, waits for it at most
+the step's wall-clock limit (killing it then), and answers one line: {"code": its exit
+code, negative for a signal, "timed_out": true or false}.
+
+Before the student's code is imported, the step's process
+- sends what it prints into the log file, outside the working copy,
+- lowers its limits of processor time, address space and file size (what it prints
+  included: a process that prints without end is killed), and writes no core file,
+- keeps on its import path only the working copy, its tests/ (the checks) and Python's
+  own libraries,
+- installs an audit hook that refuses, and notes, every write outside the working copy or
+  into its checks (tests/) and every start of another process.
+At the end it writes the checks' verdicts, the refusals and the limits the system would
+not set as JSON to the result file, outside the working copy. A process that ends before
+that (os._exit, a crash, a limit) leaves no result, and the grader says why.
+
+This keeps a submission from disturbing the others by accident. It is no security
+sandbox: code that sets out to escape can (see docs/course-kit.md). A Confinement adds
+what course_kit/sandbox.py chooses: the server run inside bubblewrap, the steps run as a user
+of their own with a limit on their processes, and whatever a step leaves running killed
+when it ends.
+"""
+import argparse
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Optional
+
+try:
+    import resource
+except ImportError:  # Windows: no process limits, and no fork either (see unsupported)
+    resource = None
+
+# What every course module imports, loaded once by the step server
+PRELOADED = ("numpy", "cv2", "matplotlib.pyplot")
+# The step server's environment: a few of the grader's variables, no window, and one
+# thread for the numerical libraries, as each submission has processes of its own
+KEPT_VARIABLES = ("PATH", "HOME", "LANG", "LC_ALL", "TMPDIR")
+ENVIRONMENT = {"MPLBACKEND": "Agg", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
+               "MKL_NUM_THREADS": "1"}
+POLL_SECONDS = 0.01  # how often the server looks whether a step's process has ended
+# Audit events that write, with the number of paths they name first, and that start a
+# process
+WRITING_EVENTS = {"os.remove": 1, "os.rmdir": 1, "os.mkdir": 1, "os.rename": 2,
+                  "os.link": 2, "os.symlink": 2, "os.truncate": 1, "os.chmod": 1,
+                  "os.chown": 1, "os.utime": 1, "shutil.rmtree": 1}
+PROCESS_EVENTS = {"subprocess.Popen", "os.system", "os.exec", "os.posix_spawn", "os.spawn",
+                  "os.fork", "os.forkpty"}
+WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_APPEND | os.O_CREAT | os.O_TRUNC
+PR_SET_CHILD_SUBREAPER, PR_SET_NO_NEW_PRIVS = 36, 38  # Linux's prctl options
+
+
+# ------------------------------------------------------------------------------------------
+# In the step's process
+# ------------------------------------------------------------------------------------------
+def set_limits(limits):
+    """Lowers this process's limits: processor time, address space, the size of any file
+    it writes (its output included), no core files. Returns a line for each limit that
+    the system refused (macOS often refuses one of the address space): the step runs
+    without it, and the grader tells the teaching assistant."""
+    cpu = int(limits["cpu_seconds"])
+    memory = int(limits["memory_mib"]) * 1024 * 1024
+    output = int(limits["output_kib"]) * 1024
+    refused = []
+    for setting, name, values in (
+            (f"cpu_seconds = {cpu}", "RLIMIT_CPU", (cpu, cpu + 1)),
+            (f"memory_mib = {limits['memory_mib']}", "RLIMIT_AS", (memory, memory)),
+            (f"output_kib = {limits['output_kib']}", "RLIMIT_FSIZE", (output, output)),
+            ("no core files", "RLIMIT_CORE", (0, 0))):
+        try:
+            resource.setrlimit(getattr(resource, name), values)
+        except (ValueError, OSError) as error:
+            refused.append(f"{setting} ({name}: {type(error).__name__}: {error})")
+    return refused
+
+
+def guard(workdir, refused):
+    """An audit hook that refuses, with a PermissionError, writes to paths outside workdir
+    or inside its tests/ (the checks and their expected images) and the start of
+    processes, and notes each refusal in the list `refused`."""
+    root = os.path.realpath(workdir)
+    checks = os.path.join(root, "tests")
+
+    def forbidden(path):
+        """Why writing path is refused, or None when it is not."""
+        if isinstance(path, int) or path is None:  # a file descriptor, already open
+            return None
+        name = os.path.realpath(os.fsdecode(path))
+        if name == os.devnull:
+            return None
+        if os.path.commonpath([name, root]) != root:
+            return f"wrote outside its working copy: {name}"
+        if os.path.commonpath([name, checks]) == checks:
+            return f"wrote into the checks: {name}"
+        return None
+
+    def hook(event, args):
+        if event == "open":
+            paths = [args[0]] if args[2] & WRITE_FLAGS else []
+        elif event in WRITING_EVENTS:
+            paths = list(args[:WRITING_EVENTS[event]])
+        elif event in PROCESS_EVENTS:
+            refused.append(f"started a process ({event})")
+            raise PermissionError(f"grading: {event} is not allowed while grading")
+        else:
+            return
+        for path in paths:
+            why = forbidden(path)
+            if why is not None:
+                refused.append(f"{why} ({event})")
+                raise PermissionError(f"grading: refused, the code {why}")
+
+    return hook
+
+
+def _python_paths():
+    """The entries of sys.path that hold Python's own libraries and installed packages."""
+    prefixes = {os.path.realpath(sys.prefix), os.path.realpath(sys.base_prefix)}
+    return [path for path in sys.path if path and any(
+        os.path.realpath(path).startswith(prefix + os.sep) for prefix in prefixes)]
+
+
+def _prctl(option, value):
+    """Linux's prctl(option, value), which Python's os module does not offer."""
+    import ctypes
+    if ctypes.CDLL(None, use_errno=True).prctl(option, value, 0, 0, 0) != 0:
+        raise OSError(ctypes.get_errno(), f"prctl({option}, {value}) failed")
+
+
+def become(user, processes):
+    """Makes this process user's (a number, with no groups, and no way back to more
+    privileges: a set-user-ID program keeps it), when it is not None, and limits the
+    processes (threads included) of its user to `processes`, when not None."""
+    if user is not None:
+        _prctl(PR_SET_NO_NEW_PRIVS, 1)
+        os.setgroups([])
+        os.setgid(user)
+        os.setuid(user)
+    if processes is not None:
+        resource.setrlimit(resource.RLIMIT_NPROC, (processes, processes))
+
+
+def step_process(workdir, step, result_path, log_path, limits, user=None, processes=None):
+    """The body of a step's process: see the module's docstring; user and processes as
+    become takes them, once its log and result files are open."""
+    log = os.open(log_path, os.O_WRONLY | os.O_APPEND)
+    os.dup2(log, 1)
+    os.dup2(log, 2)
+    signal.signal(signal.SIGXFSZ, signal.SIG_DFL)  # Python ignores it: a write would fail
+    result = open(result_path, "w", encoding="utf-8")
+    become(user, processes)
+    limits_not_set = set_limits(limits)
+    os.chdir(workdir)
+    sys.path[:] = [workdir, os.path.join(workdir, "tests")] + _python_paths()
+    import practice1_checks
+    refused = []
+    sys.addaudithook(guard(workdir, refused))
+    checks = practice1_checks.run_step(step)
+    json.dump({"checks": [{"name": check.name, "title": check.title,
+                           "passed": check.passed, "reason": check.reason,
+                           "note": check.note, "message": check.message, "error": check.error,
+                           "images": {kind: str(path) for kind, path in check.images.items()},
+                           "story": check.story, "story_pixel": list(check.story_pixel)}
+                          for check in checks],
+               "refused": refused, "limits_not_set": limits_not_set}, result)
+    result.close()
+
+
+# ------------------------------------------------------------------------------------------
+# The step server
+# ------------------------------------------------------------------------------------------
+def serve(core=None, user=None, processes=None, sweep=False):
+    """The step server's loop: see the module's docstring. user, processes: as become
+    takes them, for each step's process; sweep: whether to kill what a step leaves
+    running."""
+    if core is not None and hasattr(os, "sched_setaffinity"):
+        os.sched_setaffinity(0, {core})
+    if sweep:  # what a step leaves running becomes this server's, and is waited for
+        _prctl(PR_SET_CHILD_SUBREAPER, 1)
+    for name in PRELOADED:
+        __import__(name)
+    for line in sys.stdin:
+        request = json.loads(line)
+        pid = os.fork()
+        if pid == 0:
+            _child(request, user, processes)
+        code, timed_out = _wait(pid, request["limits"]["wall_seconds"])
+        if sweep:
+            _sweep(user)
+        print(json.dumps({"code": code, "timed_out": timed_out}), flush=True)
+
+
+def _sweep(user):
+    """Kills every process that the step left running, and waits until they are gone,
+    so that they count no more against the limit on processes: those of its user, when
+    it has one of its own, else every process of the server's namespace but the server."""
+    if user is None:
+        try:
+            os.kill(-1, signal.SIGKILL)  # spares this process and the namespace's first
+        except ProcessLookupError:  # nothing was left running
+            pass
+    elif os.fork() == 0:  # as the step's user, whose processes only it may signal
+        try:
+            become(user, None)
+            if os.getuid() == user != 0:
+                os.kill(-1, signal.SIGKILL)
+        finally:
+            os._exit(0)
+    while True:  # the helper, and the killed, which are this server's as it is subreaper
+        try:
+            os.waitpid(-1, 0)
+        except ChildProcessError:
+            return
+
+
+def _child(request, user, processes):
+    """The forked step's process: runs step_process and ends, never returning."""
+    code = 1
+    try:
+        os.dup2(os.open(os.devnull, os.O_RDONLY), 0)
+        step_process(request["workdir"], request["step"], request["result"],
+                     request["log"], request["limits"], user, processes)
+        code = 0
+    except SystemExit as error:
+        code = error.code if isinstance(error.code, int) else 1
+    except BaseException:
+        traceback.print_exc()
+    finally:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(code)
+
+
+def _wait(pid, seconds):
+    """(exit code, timed out) of the process pid, killed after seconds."""
+    deadline = time.monotonic() + seconds
+    while True:
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            return os.waitstatus_to_exitcode(status), False
+        if time.monotonic() > deadline:
+            os.kill(pid, signal.SIGKILL)
+            _, status = os.waitpid(pid, 0)
+            return os.waitstatus_to_exitcode(status), True
+        time.sleep(POLL_SECONDS)
+
+
+# ------------------------------------------------------------------------------------------
+# In the grader
+# ------------------------------------------------------------------------------------------
+def unsupported():
+    """Why the grader cannot run on this system, in one sentence, or None when it can."""
+    if resource is None or not hasattr(os, "fork"):
+        return ("the grader runs on Linux, macOS, WSL or Gradescope: it needs process "
+                "limits (the resource module) and os.fork, which this system lacks (the "
+                "handout and its checks run anywhere)")
+    return None
+
+
+# What a step server runs: this file (the tests run one that changes the system first)
+SERVER_SCRIPT = Path(__file__).resolve()
+
+
+@dataclass(frozen=True)
+class Confinement:
+    """What confines a step server and its steps besides this module's guard (chosen by
+    course_kit/sandbox.py): the command line the server runs inside, with its variables; the
+    user its steps run as and the limit on that user's processes (None: the grader's
+    user, no limit); whether what a step leaves running is killed; the folder in which the
+    working copies must lie (None: anywhere)."""
+
+    wrapper: tuple = ()
+    variables: dict = field(default_factory=dict)
+    user: Optional[int] = None
+    processes: Optional[int] = None
+    sweep: bool = False
+    cell: Optional[str] = None
+
+
+class StepServer:
+    """A step server process (see the module's docstring), used by one thread at a time;
+    core: the core it runs on, or None for any; confinement: a Confinement."""
+
+    def __init__(self, core=None, confinement=Confinement()):
+        environment = {name: os.environ[name] for name in KEPT_VARIABLES
+                       if name in os.environ}
+        environment.update(ENVIRONMENT, **confinement.variables)
+        options = [] if core is None else ["--core", str(core)]
+        if confinement.user is not None:
+            options += ["--user", str(confinement.user)]
+        if confinement.processes is not None:
+            options += ["--processes", str(confinement.processes)]
+        options += ["--sweep"] if confinement.sweep else []
+        self.confinement = confinement
+        self.process = subprocess.Popen(
+            [*confinement.wrapper, sys.executable, "-I", "-B", str(SERVER_SCRIPT), *options],
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=environment, text=True)
+
+    def close(self):
+        try:
+            self.process.stdin.close()
+        except BrokenPipeError:  # the server has ended already: nothing is left to say
+            pass
+        self.process.wait()
+
+    def run_step(self, workdir, scratch, step, limits):
+        """Runs the checks of step on workdir in a process of its own, its log and result
+        in scratch; returns (the result, or None; why there is none; what it printed)."""
+        result_path, log_path = Path(scratch) / f"{step}.json", Path(scratch) / f"{step}.log"
+        result_path.write_bytes(b"")
+        log_path.write_bytes(b"")
+        request = {"workdir": str(workdir), "step": step, "result": str(result_path),
+                   "log": str(log_path), "limits": limits}
+        try:
+            self.process.stdin.write(json.dumps(request) + "\n")
+            self.process.stdin.flush()
+            answer = self.process.stdout.readline()
+        except BrokenPipeError:
+            answer = ""
+        if not answer:
+            raise RuntimeError("the grader's step server ended unexpectedly")
+        answer = json.loads(answer)
+        output = log_path.read_bytes().decode("utf-8", "replace")
+        data = result_path.read_bytes()
+        if answer["timed_out"]:
+            return None, (f"did not finish within {limits['wall_seconds']} s, the time "
+                          "limit of a step: the code hangs or is far too slow"), output
+        if data:
+            return json.loads(data), None, output
+        return None, _why_no_result(answer["code"], limits, output), output
+
+
+def _why_no_result(code, limits, output):
+    if code in (-signal.SIGXCPU, -signal.SIGKILL):
+        return (f"used more than {limits['cpu_seconds']} s of processor time, the limit of "
+                "a step: the code hangs or is far too slow")
+    if code == -signal.SIGXFSZ:
+        return (f"printed more than {limits['output_kib']} KiB, the limit of a step's "
+                "output (or wrote a file that large): the code prints without end")
+    if "MemoryError" in output:
+        return f"ran out of memory: a step may use {limits['memory_mib']} MiB"
+    if code < 0:
+        return f"the process was killed by {signal.Signals(-code).name}"
+    return (f"the process ended (exit code {code}) before the checks were done: the code "
+            "called os._exit, or ended the process some other way")
+
+
+def cores():
+    """The cores this process may run on, for the step servers (None where the system
+    does not tell)."""
+    if hasattr(os, "sched_getaffinity"):
+        return sorted(os.sched_getaffinity(0))
+    return [None]
+
+
+def main(argv=None):
+    """The step server's command line: serve with the options StepServer gives it."""
+    parser = argparse.ArgumentParser(description="The step server (see the docstring).")
+    parser.add_argument("--core", type=int)
+    parser.add_argument("--user", type=int)
+    parser.add_argument("--processes", type=int)
+    parser.add_argument("--sweep", action="store_true")
+    arguments = parser.parse_args(argv)
+    serve(arguments.core, arguments.user, arguments.processes, arguments.sweep)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,240 @@
+"""The expected data of the students' checks, rendered by the finished framework into
+course_kit/checks/expected/practice1.npz (by `python -m course_kit expected`, and only on purpose: when
+the framework's images change by an intended change, with the reason in the commit).
+
+For each image of practice1_checks.IMAGES, at practice1_checks.SIZE pixels:
+- <name>: the image that the framework's own render() makes, the expected image;
+- <name>.seam_pixels and <name>.seam_colors: the seams, (y, x) of each pixel whose colour
+  changes when its ray leaves the pixel's centre by SEAM_WIDTH of a pixel (up, down, left
+  or right), or, in a Phong image, when its shadow rays ignore the first EPSILON of their
+  way as the course's Ray does, or when the course's own arithmetic (course_kit/arithmetic.py)
+  traces its ray, with each shadow ray that students write (SHADOW_RAYS); and for each
+  such pixel the colours of all those rays;
+- <name>.mistake.<mistake>: the image of a known mistake (practice1_checks.LIKELY): rays
+  through the pixels' corners for every ray-traced image, and the mistakes of
+  practice1_checks.RENDERED_MISTAKES, rendered by the variants of the framework's
+  integrators below.
+
+The file is written the same, byte for byte, whenever the framework's images are.
+"""
+import io
+import sys
+import tempfile
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent / "checks"))
+
+import practice1_checks as checks  # noqa: E402  (found through the line above)
+import PyRT_Integrators  # noqa: E402
+from course_kit.arithmetic import with_course_arithmetic  # noqa: E402
+from PyRT_Common import BLACK, EPSILON, Length, Ray, RGBColor  # noqa: E402
+
+# The rays of a seam pixel's alternatives: its centre moved by SEAM_WIDTH of a pixel
+SEAM_OFFSETS = [(checks.SEAM_WIDTH, 0.0), (-checks.SEAM_WIDTH, 0.0),
+                (0.0, checks.SEAM_WIDTH), (0.0, -checks.SEAM_WIDTH)]
+CORNER = (-0.5, -0.5)  # from a pixel's centre to its top-left corner
+ZIP_DATE = (1980, 1, 1, 0, 0, 0)  # the earliest a zip file holds: no date of writing
+
+
+# ------------------------------------------------------------------------------------------
+# The variants of the framework's integrators that make the mistakes' images
+# ------------------------------------------------------------------------------------------
+class UnclampedDepth(PyRT_Integrators.DepthIntegrator):
+    """Depth without the max(.., 0): the grey 1 - hit_distance / max_depth, negative beyond
+    max_depth."""
+
+    def compute_color(self, ray):
+        hit = self.scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        c = 1.0 - hit.hit_distance / self.max_depth
+        return RGBColor(c, c, c)
+
+
+class UnmappedNormals(PyRT_Integrators.NormalIntegrator):
+    """Normal without the mapping to [0, 1]: the normal itself as the colour."""
+
+    def compute_color(self, ray):
+        hit = self.scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        n = hit.normal
+        return RGBColor(n.x, n.y, n.z)
+
+
+def blocked_beyond_t_min(scene, hit, wi, r):
+    """A shadow ray Ray(hit point, wi, r), which ignores the first EPSILON (its t_min)."""
+    return scene.any_hit(Ray(hit.hit_point, wi, r))
+
+
+def blocked_from_lifted_start(scene, hit, wi, r):
+    """A shadow ray that starts EPSILON along the normal."""
+    return scene.any_hit(Ray(hit.hit_point + hit.normal * EPSILON, wi, r))
+
+
+def blocked_nearer_than_the_light(scene, hit, wi, r):
+    """The closest hit towards the light, nearer than the light."""
+    towards = scene.closest_hit(Ray(hit.hit_point, wi))
+    return towards.has_hit and towards.hit_distance < r
+
+
+def blocked_by_another_object(scene, hit, wi, r):
+    """The closest hit on the way to the light, on an object other than the one lit."""
+    towards = scene.closest_hit(Ray(hit.hit_point, wi, r))
+    return towards.has_hit and towards.primitive_index != hit.primitive_index
+
+
+# The shadow rays that students write (PYRT_SPEC.md, "What students hand in")
+SHADOW_RAYS = (blocked_beyond_t_min, blocked_from_lifted_start,
+               blocked_nearer_than_the_light, blocked_by_another_object)
+
+
+class PhongVariant(PyRT_Integrators.PhongIntegrator):
+    """Phong as the assignment describes it, written the way a student writes it (a shadow
+    ray per light, one of SHADOW_RAYS), with parts that can be left out: the ambient
+    term, the shadows, the division by r^2."""
+
+    def __init__(self, filename_, ambient=True, shadows=True, inverse_square=True,
+                 blocked=blocked_beyond_t_min):
+        super().__init__(filename_)
+        self.ambient, self.shadows, self.inverse_square = ambient, shadows, inverse_square
+        self.blocked = blocked
+
+    def compute_color(self, ray):
+        scene = self.scene
+        hit = scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        brdf = scene.object_list[hit.primitive_index].get_BRDF()
+        color = brdf.kd.multiply(scene.i_a) if self.ambient else RGBColor(0.0, 0.0, 0.0)
+        for light in scene.pointLights:
+            to_light = light.pos - hit.hit_point
+            r = Length(to_light)
+            wi = to_light / r
+            if self.shadows and self.blocked(scene, hit, wi, r):
+                continue
+            f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
+            color = color + light.intensity.multiply(f) / (r * r if self.inverse_square
+                                                           else 1.0)
+        return color
+
+
+def mistake_integrator(mistake, filename):
+    """The integrator that makes the image of a mistake of RENDERED_MISTAKES."""
+    return {
+        "unclamped_depth": lambda: UnclampedDepth(filename, 5),
+        "unmapped_normals": lambda: UnmappedNormals(filename),
+        "no_ambient": lambda: PhongVariant(filename, ambient=False),
+        "no_shadows": lambda: PhongVariant(filename, shadows=False),
+        "no_inverse_square": lambda: PhongVariant(filename, inverse_square=False),
+    }[mistake]()
+
+
+# ------------------------------------------------------------------------------------------
+# Rendering
+# ------------------------------------------------------------------------------------------
+def framework_image(name, folder):
+    """The expected image of IMAGES[name]: the framework's integrator and its render()."""
+    integrator = checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
+    scene = checks.SCENES[checks.IMAGES[name].scene]()
+    integrator.add_scene(scene)
+    integrator.render(workers=1, progress=False)
+    return np.array(scene.rendered_image, dtype=float)
+
+
+def course_shadow_rays(scene):
+    """scene, whose any_hit now ignores the first EPSILON of every ray, as the course's Ray
+    does by default (its t_min): what a shadow ray Ray(hit point, wi, r) sees."""
+    plain = scene.any_hit
+
+    def any_hit(ray):
+        return plain(Ray(ray.o, ray.d, ray.t_max, max(ray.t_min, EPSILON)))
+
+    scene.any_hit = any_hit
+    return scene
+
+
+def students_integrators(name, folder):
+    """The integrators of IMAGES[name] as students write them: for Phong one per shadow
+    ray of SHADOW_RAYS, else the framework's own."""
+    if checks.IMAGES[name].integrator == "PhongIntegrator":
+        return [PhongVariant(str(Path(folder) / name), blocked=blocked)
+                for blocked in SHADOW_RAYS]
+    return [checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)]
+
+
+def seams(name, expected, folder):
+    """(seam_pixels, seam_colors) of IMAGES[name], as the module docstring says."""
+    info = checks.IMAGES[name]
+    if info.integrator == "LazyIntegrator":
+        return np.zeros((0, 2), np.int64), np.zeros((0, 0, 3))
+
+    def scene():
+        return checks.SCENES[info.scene]()
+
+    integrator = checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
+    alternatives = [checks.traced_image(integrator, scene(), offset)
+                    for offset in SEAM_OFFSETS]
+    if info.integrator == "PhongIntegrator":
+        alternatives.append(checks.traced_image(integrator, course_shadow_rays(scene())))
+    alternatives += [checks.traced_image(student, with_course_arithmetic(scene()))
+                     for student in students_integrators(name, folder)]
+    stack = np.stack(alternatives)  # (K, height, width, 3)
+    differs = np.zeros(expected.shape[:2], bool)
+    for alternative in stack:
+        differs |= ~checks.close(alternative, expected, checks.SEAM_TOLERANCE)
+    pixels = np.argwhere(differs)
+    return pixels, stack[:, pixels[:, 0], pixels[:, 1]].transpose(1, 0, 2)
+
+
+def expected_arrays():
+    """Every array of course_kit/checks/expected/practice1.npz, by key."""
+    arrays = {}
+    with tempfile.TemporaryDirectory() as folder:
+        for name, info in checks.IMAGES.items():
+            expected = arrays[name] = framework_image(name, folder)
+            arrays[f"{name}.seam_pixels"], arrays[f"{name}.seam_colors"] = seams(
+                name, expected, folder)
+            if info.integrator == "LazyIntegrator":
+                continue
+            integrator = checks.make_integrator(name, str(Path(folder) / name),
+                                                PyRT_Integrators)
+            arrays[f"{name}.mistake.corner_rays"] = checks.traced_image(
+                integrator, checks.SCENES[info.scene](), CORNER)
+            for mistake in checks.RENDERED_MISTAKES.get(name, ()):
+                arrays[f"{name}.mistake.{mistake}"] = checks.traced_image(
+                    mistake_integrator(mistake, str(Path(folder) / mistake)),
+                    checks.SCENES[info.scene]())
+    return arrays
+
+
+def npz_bytes(arrays):
+    """arrays as an .npz file (what np.load reads), the same bytes for the same arrays:
+    sorted by key, compressed, with no date."""
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w") as archive:
+        for key in sorted(arrays):
+            member = io.BytesIO()
+            np.save(member, arrays[key], allow_pickle=False)
+            info = zipfile.ZipInfo(key + ".npy", date_time=ZIP_DATE)
+            info.compress_type = zipfile.ZIP_DEFLATED
+            archive.writestr(info, member.getvalue())
+    return buffer.getvalue()
+
+
+def framework_story(name, x, y):
+    """The finished framework's history of pixel (x, y) of IMAGES[name] (pyrt/explain.py),
+    as text: what the feedback page shows beside a student's story of the same pixel."""
+    integrator = checks.make_integrator(name, "unused", PyRT_Integrators)
+    integrator.add_scene(checks.SCENES[checks.IMAGES[name].scene]())
+    return str(integrator.explain_pixel(x, y))
+
+
+def write_expected(path):
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_bytes(npz_bytes(expected_arrays()))
+    return path

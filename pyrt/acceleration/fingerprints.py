@@ -1,0 +1,119 @@
+"""Which functions the fast paths repeat, and whether they are still what they were when
+the fast paths were proven equal to them: fingerprints of their source, and the Phong
+integrator that the fused Phong may stand in for, which its own module registers."""
+import hashlib
+import inspect
+import sys
+import textwrap
+from functools import lru_cache
+
+from PyRT_Core import InfinitePlane, Parallelogram, Sphere
+
+# The functions whose operations the fast paths repeat, named where the plain code finds
+# them, with the start of the SHA-256 of their source when the fast paths were proven
+# equal to them (tests/test_acceleration.py). One replaced, by assignment or by editing
+# its source in place, is not stood in for: the fast paths give way to the plain code.
+QUERY_FUNCTIONS = {
+    "PyRT_Core.Scene.closest_hit": "b8f3be4604f3fb81",
+    "PyRT_Core.Scene.any_hit": "b4260ae7059b6f3d",
+    "PyRT_Core.unit_direction": "a918a0f2d2309304",
+    "PyRT_Core.plane_distance": "0654dba6f824c144",
+    "PyRT_Core.Normalize": "41257e0e7f7f37cd",
+    "PyRT_Core.Length": "4b4d97bb903012e7",
+    "PyRT_Core.Dot": "5968b1bc66a4e991",
+    "PyRT_Common.unit_components": "4fddd540ec7253a7",
+    "PyRT_Common.euclidean_length": "ed684f71ac87a76c",
+}
+INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
+    Sphere: ("PyRT_Core.Sphere.intersect", "2677b580cdc27c92"),
+    InfinitePlane: ("PyRT_Core.InfinitePlane.intersect", "160459be816b77d7"),
+    Parallelogram: ("PyRT_Core.Parallelogram.intersect", "097e24d3fd5a174c"),
+}
+# PhongIntegrator.compute_color and what it calls from its own module, named as that module
+# names them: looked up in the module of the Phong integrator registered (register_phong)
+PHONG_FUNCTIONS = {
+    "PhongIntegrator.compute_color": "4c6b5443bdfb642b",
+    "shadow_ray": "32ca8d4a3ead2a3b",
+    "Length": "4b4d97bb903012e7",
+    "Dot": "5968b1bc66a4e991",
+}
+PHONG_CALLS = {  # what PhongIntegrator.compute_color calls of the modules beneath it
+    "PyRT_Core.Primitive.get_BRDF": "5009389ae19f8874",
+    "PyRT_Core.Lambertian.get_value": "4a56e9c61b6d4186",
+    "PyRT_Common.Ray.__init__": "308e8987ef15745f",
+    "PyRT_Common.Vector3D.__sub__": "a7b23b59990f357e",
+    "PyRT_Common.Vector3D.__mul__": "566dee40a844b2a9",
+    "PyRT_Common.Vector3D.__truediv__": "4dc8cc15c2a222b9",
+    "PyRT_Common.RGBColor.__add__": "126ec3224ad46034",
+    "PyRT_Common.RGBColor.__mul__": "8e0ca007b4e3bfe8",
+    "PyRT_Common.RGBColor.__truediv__": "85e151eb11f94b85",
+    "PyRT_Common.RGBColor.multiply": "3cff1994f44a3a5e",
+}
+
+
+def unchanged(functions, namespace=None) -> bool:
+    """Whether every function named in `functions` (a dict such as QUERY_FUNCTIONS, its
+    names looked up in namespace as current does) has the source it had when the fast
+    paths were proven equal to it."""
+    return all(fingerprint(current(name, namespace)) == digest
+               for name, digest in functions.items())
+
+
+def current(name, namespace=None):
+    """The object a dotted name such as "PyRT_Core.Scene.any_hit" stands for now, its first
+    part looked up in namespace (a dict; default: the loaded modules); None when there is no
+    such thing."""
+    first, *attributes = name.split(".")
+    obj = (sys.modules if namespace is None else namespace).get(first)
+    for attribute in attributes:
+        obj = getattr(obj, attribute, None)
+    return obj
+
+
+@lru_cache(maxsize=None)
+def fingerprint(function) -> str:
+    """The first 16 hexadecimal digits of the SHA-256 of a function's source (dedented);
+    '' when its source cannot be read."""
+    try:
+        source = textwrap.dedent(inspect.getsource(function))
+    except (OSError, TypeError):
+        return ""
+    return hashlib.sha256(source.encode()).hexdigest()[:16]
+
+
+# The Phong integrator class whose compute_color AcceleratedPhong repeats, once its module
+# has registered it: the acceleration stands beneath the integrators and never imports them.
+_phong_integrator = []
+
+
+def register_phong(integrator_class):
+    """Registers the integrator class whose compute_color AcceleratedPhong repeats
+    (PyRT_Integrators registers its PhongIntegrator); the last one registered counts."""
+    _phong_integrator[:] = [integrator_class]
+
+
+def phong_integrator():
+    """The Phong integrator class registered (register_phong), or None."""
+    return _phong_integrator[0] if _phong_integrator else None
+
+
+def phong_namespace():
+    """The globals of the registered Phong integrator's module, where PHONG_FUNCTIONS are
+    looked up (empty before one is registered)."""
+    phong = phong_integrator()
+    return vars(sys.modules[phong.__module__]) if phong is not None else {}
+
+
+def phong_unchanged() -> bool:
+    """Whether the registered Phong integrator's compute_color and every function it calls
+    have the source they had when AcceleratedPhong was proven equal to it."""
+    return unchanged(PHONG_FUNCTIONS, phong_namespace()) and unchanged(PHONG_CALLS)
+
+
+def mirrored_functions():
+    """(name, fingerprint when proven, fingerprint now) of every function the fast paths
+    repeat, table after table (the registered Phong integrator's last)."""
+    tables = [(QUERY_FUNCTIONS, None), (dict(INTERSECT_FUNCTIONS.values()), None),
+              (PHONG_CALLS, None), (PHONG_FUNCTIONS, phong_namespace())]
+    return [(name, digest, fingerprint(current(name, namespace)))
+            for functions, namespace in tables for name, digest in functions.items()]
