@@ -60,8 +60,8 @@ class AcceleratedQueries:
     scene does not change.
 
     Each query walks a list of entries, one per object in the order of object_list, each an
-    Entry held as a plain tuple (unpacking a NamedTuple in the queries' loops is 1.4 to 1.8
-    times slower than unpacking a tuple). Lists: from_camera, for rays that start at the
+    Entry held as a plain tuple (a NamedTuple unpacks slower in the queries' loops:
+    docs/performance.md). Lists: from_camera, for rays that start at the
     camera (the origin); everywhere, for any other ray, with nothing left out; and for the
     rays that end at point light i, towards_light[i], a TowardsLight held as a tuple."""
 
