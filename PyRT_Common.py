@@ -121,10 +121,10 @@ class Vector3D:
 
     __hash__ = None  # mutable: equal vectors may not stay equal, so they cannot be dict keys
 
-    def multiply(self, w):
-        v = _new(Vector3D)
-        v.x, v.y, v.z = self.x * w.x, self.y * w.y, self.z * w.z
-        return v
+    def multiply(self, v):
+        product = _new(Vector3D)
+        product.x, product.y, product.z = self.x * v.x, self.y * v.y, self.z * v.z
+        return product
 
     def __iter__(self):
         return iter((self.x, self.y, self.z))
@@ -267,10 +267,10 @@ class RGBColor:
 
     __hash__ = None  # mutable, see Vector3D
 
-    def multiply(self, d):
-        c = _new(RGBColor)
-        c.r, c.g, c.b = self.r * d.r, self.g * d.g, self.b * d.b
-        return c
+    def multiply(self, c):
+        product = _new(RGBColor)
+        product.r, product.g, product.b = self.r * c.r, self.g * c.g, self.b * c.b
+        return product
 
     def clamp(self, minimum, maximum):
         """Clamps every channel to [minimum, maximum], in place."""
@@ -446,7 +446,8 @@ class EnvironmentMap:
             raise ValueError(f"EnvironmentMap: OpenCV cannot read {str(path)!r}; "
                              "give it an .hdr (Radiance) or .exr latitude-longitude image")
         if texels.ndim == 2:  # the grey reading: three equal channels, as the course's
-            texels = cv2.cvtColor(texels, cv2.COLOR_RGB2BGR)
+            # cv2.cvtColor(texels, cv2.COLOR_RGB2BGR) makes them (OpenCV 5; 4 refuses one)
+            texels = np.repeat(texels[:, :, None], 3, axis=2)
         else:  # OpenCV reads colours in the order blue, green, red
             texels = cv2.cvtColor(texels, cv2.COLOR_BGR2RGB)
         self._set_texels(texels.astype(np.float32, copy=False))

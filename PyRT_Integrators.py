@@ -15,7 +15,8 @@ from pyrt.images import native_path
 # FRAMEWORK ONLY BEGIN
 from pyrt.acceleration.fingerprints import register_phong
 from pyrt.rendering import check_render, rendered_blocks
-from pyrt.sampling import ADAPTIVE_TOLERANCE, not_a_color, sampled_row
+from pyrt.rows import not_a_color, sampled_row
+from pyrt.sampling import ADAPTIVE_TOLERANCE
 # FRAMEWORK ONLY END
 
 __all__ = _common_names + [
@@ -112,7 +113,7 @@ class Integrator(ABC):
     def render_row(self, y, samples_per_pixel=1):
         """Row y of the image: for every pixel x, the colour arriving along the ray from the
         camera through the pixel's centre, or the average over samples_per_pixel rays
-        spread inside the pixel (see pyrt.sampling.sampled_row).
+        spread inside the pixel (see pyrt.rows.sampled_row).
 
         The colours come flat, [r0, g0, b0, r1, g1, b1, ...]: a flat list of floats becomes
         an array sooner than a list of colours does. Camera rays start at no

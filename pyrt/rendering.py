@@ -14,6 +14,7 @@ import ast
 import contextlib
 import inspect
 import multiprocessing
+import random
 import sys
 import tempfile
 import textwrap
@@ -117,8 +118,14 @@ def rendered_blocks(integrator, workers, sampling, progress):
     scene = integrator.scene
     height, width = scene.camera.height, scene.camera.width
 
+    # The render's one draw of Python's global generator, from which every row's stream
+    # is made (pyrt.rows.RowStreams); the generator is given back its state after it when
+    # the render ends, however many processes rendered and whatever the rows drew.
+    seed = int(random.random() * 2 ** 53)
+    after_the_draw = random.getstate()
+
     def passes():
-        for rendering in sampling.passes(integrator, workers):
+        for rendering in sampling.passes(integrator, workers, seed):
             rows = rendering.rows
             with tqdm(total=rows.pixels(0, height, width), unit="px", unit_scale=True,
                       disable=not progress, mininterval=0.5,
@@ -140,6 +147,8 @@ def rendered_blocks(integrator, workers, sampling, progress):
         print(f"\nInterrupted: the rows rendered so far are saved in {partial}.png (.npy, "
               ".hdr)", file=sys.stderr)
         raise
+    finally:
+        random.setstate(after_the_draw)
     _report_non_finite(scene.rendered_image, type(integrator).__name__)
 
 

@@ -23,7 +23,7 @@ import numpy as np
 
 from PyRT_Core import BRDF, Camera, PointLight, Primitive, Scene
 from pyrt.acceleration.accelerated import accelerated, debugger_attached, plain
-from pyrt.sampling import render_block
+from pyrt.rows import render_block
 
 # With workers=None, a render that one process would finish sooner than this stays in
 # one process: starting workers would cost more than they save. Forked workers (Linux)

@@ -295,3 +295,15 @@ class ConstantGrey(Integrator):
     def compute_color(self, ray):
         self.calls += 1
         return RGBColor(0.25, 0.5, 0.75)
+
+
+class RandomGrey(Integrator):
+    """Each pixel a grey drawn from Python's global generator with the course's random(),
+    as a student's Monte Carlo integrator draws its numbers."""
+
+    def __init__(self, filename_):
+        super().__init__(filename_ + "_RandomGrey")
+
+    def compute_color(self, ray):
+        grey = random()
+        return RGBColor(grey, grey, grey)

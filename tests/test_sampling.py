@@ -7,6 +7,7 @@ import re
 import numpy as np
 import pytest
 
+import pyrt.rows
 import pyrt.sampling
 from AppRenderer import sphere_test_scene
 from make_references import SAMPLED_REFERENCE, SAMPLED_REFERENCE_SIZE
@@ -110,14 +111,14 @@ def test_sampled_pixels_gives_colour_and_error_of_the_pixels_asked_for_zeros_els
     # LeftHalfWhite with N = 2: mean 1/2 and one pair differing by 1, error 1 / (4 sqrt(2))
     integrator = LeftHalfWhite(str(tmp_path / "img"))
     integrator.add_scene(fov90_scene(3, 2))
-    row = pyrt.sampling.sampled_pixels(integrator, 1, 2, [1])
+    row = pyrt.rows.sampled_pixels(integrator, 1, 2, [1])
     error = 1 / (4 * math.sqrt(2))
     assert row[:6] == [0.0] * 6 and row[12:] == [0.0] * 6
     assert row[6:12] == pytest.approx([0.5] * 3 + [error] * 3, rel=1e-15)
     # one sample per pixel: no pair of samples, no spread to estimate an error from
     grey = PixelGrey(str(tmp_path / "img"))
     grey.add_scene(fov90_scene(3, 2))
-    row = pyrt.sampling.sampled_pixels(grey, 1, 1, [0, 1, 2])
+    row = pyrt.rows.sampled_pixels(grey, 1, 1, [0, 1, 2])
     assert row[3:6] == row[9:12] == row[15:18] == [0.0] * 3
 
 
@@ -177,7 +178,7 @@ def test_uniform_samples_lie_inside_their_pixel_one_in_each_stratum(samples):
     rows, columns = GRIDS[samples]
     every_cell = sorted((r, c) for r in range(rows) for c in range(columns))
     for y in (0, 7):
-        for points in pyrt.sampling.pixel_offsets(samples, y, 5):
+        for points in pyrt.rows.pixel_offsets(samples, y, 5):
             assert all(0.0 <= u < 1.0 and 0.0 <= v < 1.0 for u, v in points)
             # one point in each cell, in the order of the cells: row by row
             assert cells_of(points, rows, columns) == every_cell
@@ -187,7 +188,7 @@ def test_sample_points_are_random_across_and_down_their_cell_independently():
     # where a point lies across its cell says nothing about where it lies down it: over
     # 50 pixels of 4 cells, the two fractions agree nowhere
     rows, columns = GRIDS[4]
-    for points in pyrt.sampling.pixel_offsets(4, 2, 50):
+    for points in pyrt.rows.pixel_offsets(4, 2, 50):
         for (u, v), (r, c) in zip(points, cells_of(points, rows, columns)):
             assert abs((u * columns - c) - (v * rows - r)) > 1e-12
 
@@ -435,7 +436,7 @@ def test_ctrl_c_while_refining_saves_the_centre_rays_image(tmp_path):
     (9, [(0, 1), (2, 3), (4, 5), (6, 7)]),      # 3 x 3: consecutive, the last left out
 ])
 def test_strata_are_paired_with_a_neighbour(samples, pairs):
-    assert pyrt.sampling.stratum_pairs(samples) == pairs
+    assert pyrt.rows.stratum_pairs(samples) == pairs
 
 
 @pytest.mark.parametrize("samples, weight", [
@@ -444,7 +445,7 @@ def test_strata_are_paired_with_a_neighbour(samples, pairs):
     (9, 1 / (math.sqrt(2) * 8 * 9)),    # P = 4 pairs
 ])
 def test_error_variance_weight_is_one_over_sqrt2_2P_N(samples, weight):
-    assert pyrt.sampling.error_variance_weight(samples) == pytest.approx(weight, rel=1e-15)
+    assert pyrt.rows.error_variance_weight(samples) == pytest.approx(weight, rel=1e-15)
 
 
 class LeftHalfWhite(Integrator):

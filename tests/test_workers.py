@@ -15,6 +15,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+import pyrt.rows
 import pyrt.sampling
 import pyrt.workers
 from AppRenderer import sphere_test_scene
@@ -241,7 +242,7 @@ def run_worker(integrator, blocks, taken_before=0):
     ctrl_c = signal.getsignal(signal.SIGINT)
     try:
         pyrt.workers._worker(pickle.dumps(integrator), blocks,
-                               pyrt.sampling._CourseRows(1), shared, sender)
+                             pyrt.rows.CourseRows(1, pyrt.rows.RowStreams(0)), shared, sender)
         worker_ctrl_c = signal.getsignal(signal.SIGINT)
     finally:
         signal.signal(signal.SIGINT, ctrl_c)
@@ -565,15 +566,15 @@ def test_long_render_with_all_cores_renders_each_pass_with_a_worker_per_other_co
     monkeypatch.setattr(pyrt.workers, "_render_with_workers", recorded)
     image = render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4),
                          samples_per_pixel=4, adaptive=True)
-    assert passes == [("_CourseRows", [(1, 2), (2, 3), (3, 4)], 1),
-                      ("_SampledRows", [(0, 1), (1, 2), (2, 3), (3, 4)], 1)]
+    assert passes == [("CourseRows", [(1, 2), (2, 3), (3, 4)], 1),
+                      ("SampledRows", [(0, 1), (1, 2), (2, 3), (3, 4)], 1)]
     one_process = render_image(StepAt(str(tmp_path / "one"), 2.3), fov90_scene(5, 4),
                                workers=1, samples_per_pixel=4, adaptive=True)
     assert np.array_equal(image, one_process)
 
 
 @pytest.mark.parametrize("adaptive, passes_made", [
-    (False, ["_SampledRows"]), (True, ["_CourseRows", "_SampledRows"])])
+    (False, ["SampledRows"]), (True, ["CourseRows", "SampledRows"])])
 def test_render_with_two_workers_renders_every_pass_with_them(tmp_path, monkeypatch, adaptive,
                                                               passes_made):
     # however short the render: workers=2 is an order

@@ -50,7 +50,7 @@ PHONG_CALLS = {  # what PhongIntegrator.compute_color calls of the modules benea
     "PyRT_Common.RGBColor.__add__": "126ec3224ad46034",
     "PyRT_Common.RGBColor.__mul__": "8e0ca007b4e3bfe8",
     "PyRT_Common.RGBColor.__truediv__": "85e151eb11f94b85",
-    "PyRT_Common.RGBColor.multiply": "3cff1994f44a3a5e",
+    "PyRT_Common.RGBColor.multiply": "db6e9f232b4675f8",
 }
 
 
