@@ -12,6 +12,7 @@ from pathlib import Path
 from PyRT_Common import *
 from PyRT_Core import *
 from PyRT_Integrators import *
+from PyRT_Common import COURSE_ENV_MAP
 from pyrt.compare import REFERENCE_SIZE, compare_figures, write_sheet
 from pyrt.explain import explain_pixel
 from pyrt.explain_picture import save_picture
@@ -23,7 +24,10 @@ from pyrt.sampling import ADAPTIVE_TOLERANCE
 DIRECTORY = str(Path(__file__).resolve().parent / "out") + "/"
 FILENAME = "rendered_image"
 SHEET_FILENAME = "figures_vs_reference.png"
-ENV_MAP_PATH = str(Path(__file__).resolve().parent / "env_maps" / "environment.hdr")
+# The course's environment map, 'env_maps/arch_nozero.hdr', from the folder the script runs
+# in as the course's code reads it, or beside this file; where it is in neither, PyRT's own
+# sky stands in for it, and one line says so (PyRT_Common.EnvironmentMap)
+ENV_MAP_PATH = COURSE_ENV_MAP
 
 
 # ------------------------------------------------------------------------------------------

@@ -1,8 +1,10 @@
-"""PyRT common types: vectors, colours, rays, hit records and the environment map.
+"""PyRT common types: vectors, colours, rays, hit records, the environment map, and the
+Monte Carlo half of the course's base code (densities, integrands and sample sets over the
+hemisphere).
 
 Students write ``from PyRT_Common import *``; besides the classes and functions below that
-also brings ``np``, ``cv2``, ``plt``, ``ABC``, ``abstractmethod`` and ``sqrt, acos, cos, sin,
-atan2, floor, pi`` into their module.
+also brings ``np``, ``cv2``, ``plt``, ``ABC``, ``abstractmethod``, ``sqrt, acos, cos, sin,
+atan2, floor, pi`` and ``random`` (the function random.random) into their module.
 
 The operators below run millions of times per image, so the classes that every ray
 touches (Vector3D, RGBColor, Ray, HitData) have ``__slots__``, and the operators that
@@ -13,11 +15,14 @@ from abc import ABC, abstractmethod
 from math import acos, atan2, cos, floor, frexp, ldexp, pi, sin, sqrt
 from numbers import Real
 from pathlib import Path
+from random import random  # Python's global generator, which random.seed seeds
 
 import matplotlib.pyplot as plt
 import numpy as np
 
-from pyrt.images import cv2  # OpenCV, or an ImportError that says how to repair it
+from pyrt.environment_maps import sky_map
+# cv2: OpenCV, or an ImportError that says how to repair it
+from pyrt.images import cv2, native_path
 
 __all__ = [
     "np", "cv2", "plt", "ABC", "abstractmethod",
@@ -25,7 +30,10 @@ __all__ = [
     "EPSILON", "HUGEVALUE", "INFINITY", "PI", "TWO_PI", "INVERTED_PI",
     "Vector3D", "Dot", "Cross", "Length", "Normalize", "orient_normal",
     "RGBColor", "BLACK", "WHITE", "GREEN", "RED",
-    "Ray", "HitData", "shadow_ray", "EnvironmentMap",
+    "Ray", "HitData", "shadow_ray", "EnvironmentMap", "random",
+    "PDF", "UniformPDF", "CosinePDF", "Function", "Constant", "CosineLobe",
+    "sample_set_hemisphere", "center_around_normal", "oriented_hemi_dir", "rotate_around_y",
+    "euclidean_to_disk", "visualize_sample_set",
 ]
 
 # ------------------------------------------------------------------------------------------
@@ -70,10 +78,10 @@ class Vector3D:
 
     __slots__ = ("x", "y", "z")
 
-    def __init__(self, x, y, z):
-        self.x = x
-        self.y = y
-        self.z = z
+    def __init__(self, x_element, y_element, z_element):
+        self.x = x_element
+        self.y = y_element
+        self.z = z_element
 
     def __add__(self, w):
         v = _new(Vector3D)
@@ -221,10 +229,10 @@ class RGBColor:
 
     __slots__ = ("r", "g", "b")
 
-    def __init__(self, r, g, b):
-        self.r = r
-        self.g = g
-        self.b = b
+    def __init__(self, red, green, blue):
+        self.r = red
+        self.g = green
+        self.b = blue
 
     def __add__(self, d):
         c = _new(RGBColor)
@@ -264,11 +272,11 @@ class RGBColor:
         c.r, c.g, c.b = self.r * d.r, self.g * d.g, self.b * d.b
         return c
 
-    def clamp(self, lo, hi):
-        """Clamps every channel to [lo, hi], in place."""
-        self.r = min(max(self.r, lo), hi)
-        self.g = min(max(self.g, lo), hi)
-        self.b = min(max(self.b, lo), hi)
+    def clamp(self, minimum, maximum):
+        """Clamps every channel to [minimum, maximum], in place."""
+        self.r = min(max(self.r, minimum), maximum)
+        self.g = min(max(self.g, minimum), maximum)
+        self.b = min(max(self.b, minimum), maximum)
 
     def __iter__(self):
         return iter((self.r, self.g, self.b))
@@ -416,31 +424,245 @@ def shadow_ray(hit, target):
 class EnvironmentMap:
     """Light arriving from infinitely far away, stored as a latitude-longitude HDR image.
 
-    A direction d maps to u = (1 + atan2(d.x, -d.z)/pi)/2 (longitude, 0.5 straight ahead)
-    and v = acos(d.y)/pi (0 straight up, 1 straight down).
+    Read as the course reads it: cv2.imread(path, flags=cv2.IMREAD_ANYDEPTH), which gives
+    OpenCV's grey reading of the file (each texel 0.299 R + 0.587 G + 0.114 B of its linear
+    values), then cv2.cvtColor(..., cv2.COLOR_RGB2BGR), which makes it three equal channels:
+    every radiance the map returns has r = g = b. ``colour=True`` reads the file's colours
+    instead (PyRT's addition; the course's images lit by a map are grey-lit).
+
+    A direction d maps to u = (1 + (1/PI) atan2(d.x, -d.z)) / 2 (longitude, 0.5 straight
+    ahead) and v = (1/PI) acos(d.y) (0 straight up, 1 straight down), and getValue returns
+    the texel at column floor(u (width - 1)), row floor(v (height - 1)).
     """
 
-    def __init__(self, path):
-        path = Path(path)
-        if not path.is_file():
-            raise FileNotFoundError(f"EnvironmentMap: no image file at "
-                                    f"{str(path.resolve())!r}; give the path of a "
-                                    "latitude-longitude .hdr image")
-        image = cv2.imread(str(path), cv2.IMREAD_ANYDEPTH | cv2.IMREAD_COLOR)
-        if image is None:
+    def __init__(self, env_map_path, colour=False):
+        path = _environment_map_file(env_map_path)
+        if path is None:  # the course's own map, not here: PyRT's sky stands in for it
+            self._set_texels(sky_map())
+            return
+        flags = cv2.IMREAD_ANYDEPTH | cv2.IMREAD_COLOR if colour else cv2.IMREAD_ANYDEPTH
+        texels = cv2.imread(str(path), flags=flags)
+        if texels is None:
             raise ValueError(f"EnvironmentMap: OpenCV cannot read {str(path)!r}; "
                              "give it an .hdr (Radiance) or .exr latitude-longitude image")
-        self.image = cv2.cvtColor(image, cv2.COLOR_BGR2RGB).astype(np.float64)
-        self.height, self.width = self.image.shape[:2]
+        if texels.ndim == 2:  # the grey reading: three equal channels, as the course's
+            texels = cv2.cvtColor(texels, cv2.COLOR_RGB2BGR)
+        else:  # OpenCV reads colours in the order blue, green, red
+            texels = cv2.cvtColor(texels, cv2.COLOR_BGR2RGB)
+        self._set_texels(texels.astype(np.float32, copy=False))
+
+    @classmethod
+    def from_texels(cls, texels):
+        """A map made from an array of texels (height, width, 3) instead of a file, such as
+        PyRT's own maps (pyrt.environment_maps); they are kept as float32, as OpenCV reads
+        a file."""
+        env_map = cls.__new__(cls)
+        env_map._set_texels(np.asarray(texels, dtype=np.float32))
+        return env_map
+
+    def _set_texels(self, texels):
+        self.env_map_hdr = texels
+        self.height, self.width = texels.shape[:2]
 
     def euclideanToLatLong(self, d):
         """The (u, v) image coordinates, both in [0, 1], of the unit direction d."""
-        u = (1.0 + atan2(d.x, -d.z) / pi) / 2.0
-        v = acos(min(1.0, max(-1.0, d.y))) / pi  # rounding can push d.y just outside [-1, 1]
+        u = (1 + (1 / PI) * atan2(d.x, -d.z)) / 2
+        v = (1 / PI) * acos(min(1.0, max(-1.0, d.y)))  # rounding can push d.y out of [-1, 1]
         return u, v
 
     def getValue(self, d):
-        """The radiance arriving from direction d: the texel under (u, v)."""
+        """The radiance arriving from direction d: the texel under (u, v), its channels
+        numpy float32 values as OpenCV read them."""
         u, v = self.euclideanToLatLong(d)
-        r, g, b = self.image[floor(v * (self.height - 1)), floor(u * (self.width - 1))]
-        return RGBColor(float(r), float(g), float(b))
+        texel = self.env_map_hdr[floor(v * (self.height - 1)), floor(u * (self.width - 1))]
+        return RGBColor(texel[0], texel[1], texel[2])
+
+
+# The course's environment map, as its scenes name it: relative to the folder the script
+# runs in. It is the course's (the env_maps/ folder of its base code), not PyRT's to ship.
+COURSE_ENV_MAP = "env_maps/arch_nozero.hdr"
+_BESIDE_APP = Path(__file__).resolve().parent  # the folder of AppRenderer.py
+
+
+def _environment_map_file(env_map_path):
+    """The file of an environment map: the path as given (relative to the current folder);
+    for the course's own map, also beside AppRenderer.py, and None when it is in neither
+    place (one line says so: PyRT's sky then stands in); else a FileNotFoundError."""
+    path = Path(native_path(env_map_path))  # a Windows path means the same on any system
+    if path.is_file():
+        return path
+    if path.as_posix().removeprefix("./") == COURSE_ENV_MAP:
+        if (_BESIDE_APP / COURSE_ENV_MAP).is_file():
+            return _BESIDE_APP / COURSE_ENV_MAP
+        print(f"EnvironmentMap: {COURSE_ENV_MAP} is the course's map, from the env_maps/ "
+              "folder of the course's base code, and it is not here (put that folder beside "
+              "AppRenderer.py or in the folder you run from); PyRT's own sky map stands in "
+              "for it.")
+        return None
+    raise FileNotFoundError(f"EnvironmentMap: no image file at {str(path.resolve())!r}; "
+                            "give the path of a latitude-longitude .hdr image")
+
+
+# ------------------------------------------------------------------------------------------
+# Monte Carlo: densities and integrands over the unit hemisphere around +y, sample sets
+# ------------------------------------------------------------------------------------------
+class PDF(ABC):
+    """A probability density p(omega) over the directions of the unit hemisphere around +y,
+    with a way to draw directions from it."""
+
+    @abstractmethod
+    def get_val(self, omega_i):
+        """The density p(omega_i)."""
+
+    @abstractmethod
+    def generate_dir(self, u1, u2):
+        """The direction of density p made from two uniform numbers u1, u2 in [0, 1)."""
+
+
+class UniformPDF(PDF):
+    """Every direction of the hemisphere equally likely: p(omega) = 1 / (2 pi).
+
+    generate_dir: y = u2 (the cosine of the angle to +y is uniform in [0, 1)), phi = 2 pi u1,
+    x = sin(phi) sqrt(1 - u2^2), z = cos(phi) sqrt(1 - u2^2)."""
+
+    def get_val(self, omega_i):
+        return 1 / (2 * pi)
+
+    def generate_dir(self, u1, u2):
+        phi = 2 * pi * u1
+        sin_theta = sqrt(1 - u2 ** 2)
+        return Vector3D(sin(phi) * sin_theta, u2, cos(phi) * sin_theta)
+
+
+class CosinePDF(PDF):
+    """Directions near +y more likely: p(omega) = (exp + 1) / (2 pi) cos^exp, cos the cosine
+    of the angle between omega and +y (exp 1 is cosine-weighted sampling).
+
+    generate_dir: y = u2^(1/(exp + 1)), phi = 2 pi u1, s = sqrt(1 - u2^(2/(exp + 1))),
+    x = sin(phi) s, z = cos(phi) s."""
+
+    def __init__(self, exp_):
+        self.exp = exp_
+
+    def get_val(self, omega_i):
+        cos_theta = Dot(Vector3D(0.0, 1.0, 0.0), omega_i)
+        return (self.exp + 1) / (2 * pi) * cos_theta ** self.exp
+
+    def generate_dir(self, u1, u2):
+        phi = 2 * pi * u1
+        y = u2 ** (1 / (self.exp + 1))
+        sin_theta = sqrt(1 - u2 ** (2 / (self.exp + 1)))
+        return Vector3D(sin(phi) * sin_theta, y, cos(phi) * sin_theta)
+
+
+class Function(ABC):
+    """An integrand f(omega) over the hemisphere around +y, with ``ground_truth``, the value
+    of its integral, to measure an estimate's error against."""
+
+    def __init__(self, integral_value):
+        self.ground_truth = integral_value
+
+    @abstractmethod
+    def eval(self, omega_i):
+        """The value f(omega_i)."""
+
+    @abstractmethod
+    def get_integral(self):
+        """The integral of f over the hemisphere."""
+
+
+class Constant(Function):
+    """f(omega) = c, whose integral over the hemisphere (solid angle 2 pi) is 2 pi c."""
+
+    def __init__(self, const_value_):
+        self.const_value = const_value_
+        super().__init__(self.get_integral())
+
+    def eval(self, omega_i):
+        return self.const_value
+
+    def get_integral(self):
+        return 2 * pi * self.const_value
+
+
+class CosineLobe(Function):
+    """f(omega) = cos^exp, cos the cosine of the angle between omega and +y; its integral
+    over the hemisphere is 2 pi / (exp + 1)."""
+
+    def __init__(self, exp_):
+        self.exp = exp_
+        super().__init__(self.get_integral())
+
+    def eval(self, omega_i):
+        return Dot(Vector3D(0.0, 1.0, 0.0), omega_i) ** self.exp
+
+    def get_integral(self):
+        return 2 * pi / (self.exp + 1)
+
+
+def sample_set_hemisphere(n_samples, pdf):
+    """n_samples directions drawn from pdf and their densities: for each, u1 = random() then
+    u2 = random() (Python's global generator, which random.seed seeds), the direction
+    pdf.generate_dir(u1, u2) and pdf.get_val of it. Returns (directions, densities)."""
+    sample_set, sample_prob = [], []
+    for _ in range(n_samples):
+        u1 = random()
+        u2 = random()
+        omega = pdf.generate_dir(u1, u2)
+        sample_set.append(omega)
+        sample_prob.append(pdf.get_val(omega))
+    return sample_set, sample_prob
+
+
+def center_around_normal(dir, normal):
+    """The direction dir of the hemisphere around +y turned into the hemisphere around
+    normal: in the frame w = normal, v = Normalize(Cross(up, w)) with the "jittered up"
+    (0.00319, 1.0, 0.0078) (never parallel to an axis-aligned normal), u = Cross(v, w),
+    the unit vector Normalize(v dir.x + w dir.y + u dir.z)."""
+    w = normal
+    v = Normalize(Cross(Vector3D(0.00319, 1.0, 0.0078), w))
+    u = Cross(v, w)
+    return Normalize(v * dir.x + w * dir.y + u * dir.z)
+
+
+def oriented_hemi_dir(pdf, u1, u2, new_normal):
+    """A direction drawn from pdf (from u1, u2) in the hemisphere around new_normal."""
+    return center_around_normal(pdf.generate_dir(u1, u2), new_normal)
+
+
+def rotate_around_y(alpha, dir_):
+    """dir_ rotated by the angle alpha (radians) around the y axis:
+    (x cos(alpha) + z sin(alpha), y, -x sin(alpha) + z cos(alpha))."""
+    return Vector3D(dir_.x * cos(alpha) + dir_.z * sin(alpha), dir_.y,
+                    -dir_.x * sin(alpha) + dir_.z * cos(alpha))
+
+
+def euclidean_to_disk(sample_set):
+    """The directions of sample_set as polar coordinates of a disk, two numpy arrays: r, the
+    angle to +y, acos(d.y), and phi = atan2(d.x, d.z) around it."""
+    r = np.array([acos(Dot(Vector3D(0.0, 1.0, 0.0), d)) for d in sample_set])
+    phi = np.array([atan2(d.x, d.z) for d in sample_set])
+    return r, phi
+
+
+def visualize_sample_set(sample_set, weights=[], show=True):
+    """A polar scatter plot of the directions of sample_set seen from above: the angle phi
+    around +y, the distance from the centre the angle to +y (0 to pi/2). With weights (one
+    per direction), each dot is coloured by its weight, colormap "jet" from 0.7/n to 1.3/n
+    for n directions, with a colour bar. Shown with plt.show() (show=False: not shown);
+    returns the figure."""
+    r, phi = euclidean_to_disk(sample_set)
+    figure = plt.figure()
+    axes = figure.add_subplot(projection="polar")
+    if len(weights):
+        n = len(sample_set)
+        dots = axes.scatter(phi, r, c=weights, cmap="jet", vmin=1 / n - 0.3 / n,
+                            vmax=1 / n + 0.3 / n)
+        figure.colorbar(dots)
+    else:
+        axes.scatter(phi, r)
+    axes.set_xlim(0, 2 * pi)
+    axes.set_ylim(0, pi / 2)
+    if show:
+        plt.show()
+    return figure

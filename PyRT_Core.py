@@ -76,6 +76,29 @@ def unit_direction(ray):
     return Normalize(d)
 
 
+def course_direction(ray):
+    """Normalize(ray.d), the unit direction along which the course's plane and
+    parallelogram tests measure t. The course normalises even a direction already of unit
+    length, which can move its last bits, and so does PyRT: where two walls meet, which one
+    a ray sees first is decided on those bits. A ValueError when the direction is zero or
+    not finite (see unit_direction)."""
+    d = ray.d
+    if UNIT_LOW <= d.x * d.x + d.y * d.y + d.z * d.z <= UNIT_HIGH:
+        return Normalize(d)
+    return unit_direction(ray)
+
+
+def plane_hit_point(ray, d, t):
+    """The point at distance t of a ray that meets a plane along its unit direction d:
+    ray.get_hitpoint(t), o + ray.d * t, as the course builds it, when ray.d is of unit
+    length (d is ray.d then, but for the last bits); else o + d * t along d (the course's
+    point lies elsewhere there, t being measured along d)."""
+    r = ray.d
+    if UNIT_LOW <= r.x * r.x + r.y * r.y + r.z * r.z <= UNIT_HIGH:
+        return ray.get_hitpoint(t)
+    return ray.o + d * t
+
+
 def plane_distance(ray, d, normal, point):
     """Where the ray, of unit direction d, meets the plane through point with the given unit
     normal: t = (point - o).n / (d.n), as the course computes it; None when that is not in
@@ -128,20 +151,23 @@ class Scene:
         self.camera = camera
         self.rendered_image = np.zeros((camera.height, camera.width, 3))
 
-    def set_environment_map(self, path):
-        self.env_map = EnvironmentMap(path)
+    def set_environment_map(self, env_map_path):
+        """Lights the scene with the latitude-longitude image at env_map_path, read as the
+        course reads it (PyRT_Common.EnvironmentMap)."""
+        self.env_map = EnvironmentMap(env_map_path)
 
-    def add_object(self, obj):
-        if not isinstance(obj, Primitive):
-            raise TypeError("Scene.add_object: obj must be a Primitive (Sphere, InfinitePlane, "
-                            f"Parallelogram or your own subclass), got {obj!r}")
-        self.object_list.append(obj)
+    def add_object(self, new_object):
+        if not isinstance(new_object, Primitive):
+            raise TypeError("Scene.add_object: new_object must be a Primitive (Sphere, "
+                            "InfinitePlane, Parallelogram or your own subclass), got "
+                            f"{new_object!r}")
+        self.object_list.append(new_object)
 
-    def add_point_light_sources(self, light):
-        if not isinstance(light, PointLight):
-            raise TypeError(f"Scene.add_point_light_sources: light must be a PointLight, "
-                            f"got {light!r}")
-        self.pointLights.append(light)
+    def add_point_light_sources(self, point_light):
+        if not isinstance(point_light, PointLight):
+            raise TypeError(f"Scene.add_point_light_sources: point_light must be a "
+                            f"PointLight, got {point_light!r}")
+        self.pointLights.append(point_light)
 
     def any_hit(self, ray):
         """True when the ray hits any object at a distance in [ray.t_min, ray.t_max]."""
@@ -208,11 +234,8 @@ class Primitive(ABC):
         self.emission = _check_color(type(self).__name__, "emission", emission)
         self.BRDF = None
 
-    def set_BRDF(self, brdf):
-        if not isinstance(brdf, BRDF):
-            raise TypeError(f"{type(self).__name__}.set_BRDF: brdf must be a BRDF such as "
-                            f"Lambertian(RGBColor(...)), got {brdf!r}")
-        self.BRDF = brdf
+    def set_BRDF(self, BRDF):
+        self.BRDF = _check_brdf(f"{type(self).__name__}.set_BRDF", BRDF)
 
     def get_BRDF(self):
         """The object's BRDF; a RuntimeError that says what to call when it has none."""
@@ -311,12 +334,12 @@ class InfinitePlane(Primitive):
         return f"InfinitePlane({self._origin!r}, {self._normal!r})"
 
     def intersect(self, ray):
-        d, n = unit_direction(ray), self._normal
+        d, n = course_direction(ray), self._normal
         t = plane_distance(ray, d, n, self._origin)
         # A ray nearly parallel to the plane can overflow t to infinity: no hit there.
         if t is None or t == INFINITY:
             return HitData()
-        return HitData(True, ray.o + d * t, Vector3D(n.x, n.y, n.z), t)
+        return HitData(True, plane_hit_point(ray, d, t), Vector3D(n.x, n.y, n.z), t)
 
 
 class Parallelogram(Primitive):
@@ -359,11 +382,11 @@ class Parallelogram(Primitive):
         return f"Parallelogram({self._point!r}, {self._s1!r}, {self._s2!r})"
 
     def intersect(self, ray):
-        d, n = unit_direction(ray), self.normal
+        d, n = course_direction(ray), self.normal
         t = plane_distance(ray, d, n, self._point)
         if t is None:
             return HitData()
-        p = ray.o + d * t
+        p = plane_hit_point(ray, d, t)
         q = p - self._point
         low, high = -EDGE_TOLERANCE, 1.0 + EDGE_TOLERANCE
         if not (low <= Dot(q, self.coordinate_a) <= high
@@ -382,8 +405,16 @@ class BRDF(ABC):
 
 
     @abstractmethod
-    def get_value(self, wi, wo, normal):
-        """The reflected fraction for light arriving from wi and seen from wo."""
+    def get_value(self, incoming, outgoing, normal):
+        """The reflected fraction for light arriving from incoming and seen from outgoing."""
+
+
+def _check_brdf(owner, value):
+    """value when it is a BRDF; else a TypeError naming what to give."""
+    if not isinstance(value, BRDF):
+        raise TypeError(f"{owner}: BRDF must be a BRDF such as Lambertian(RGBColor(...)), "
+                        f"got {value!r}")
+    return value
 
 
 class Lambertian(BRDF):
@@ -401,6 +432,10 @@ class Lambertian(BRDF):
         if cos_theta > 0.0:
             return self.kd * cos_theta
         return BLACK
+
+    def get_kd(self):
+        """kd, the diffuse colour / pi."""
+        return self.kd
 
 
 # ------------------------------------------------------------------------------------------

@@ -20,7 +20,7 @@ from pyrt.sampling import ADAPTIVE_TOLERANCE, not_a_color, sampled_row
 
 __all__ = _common_names + [
     "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
-    "NormalIntegrator", "PhongIntegrator",
+    "NormalIntegrator", "PhongIntegrator", "CMCIntegrator", "BayesianMonteCarloIntegrator",
 ]
 
 
@@ -43,12 +43,19 @@ class Integrator(ABC):
         # '.\\out\\image' (the 2025-26 handout's) names the folder out on every system
         self.filename = native_path(filename_ + experiment_name)
         self.scene = None
+        self.env_map = None
 
     def get_filename(self):
         return self.filename
 
     def add_scene(self, scene):
         self.scene = scene
+
+    def add_environment_map(self, env_map_path):
+        """Sets the integrator's own environment map, env_map (some 2021-22 copies of the
+        course's base code have it; the scene's, scene.env_map, is what the course's
+        integrators read)."""
+        self.env_map = EnvironmentMap(env_map_path)
 
     @abstractmethod
     def compute_color(self, ray):
@@ -244,6 +251,68 @@ class PhongIntegrator(Integrator):
             color = color + light.intensity.multiply(f) / (r * r)
         return color
         # ASSIGNMENT 1.4 END
+
+
+# ------------------------------------------------------------------------------------------
+# Classic Monte Carlo integrator (Practice 2, Assignment 2.3)
+# ------------------------------------------------------------------------------------------
+class CMCIntegrator(Integrator):
+    """The light reflected towards the camera at the closest hit p with normal n, estimated
+    by classic Monte Carlo from n_samples directions omega_j drawn over the hemisphere
+    around n with density p(omega_j):
+
+        L_o = (1 / n_samples) sum over j of L_i(omega_j) (x) BRDF.get_value(omega_j, wo, n)
+              / p(omega_j)
+
+    L_i(omega_j) is the emission of the object the ray from p along omega_j hits, or, when
+    it hits nothing, the scene's environment map in that direction (black without one).
+    The Lambertian's get_value already holds the cosine. A camera ray that hits nothing
+    sees the environment map; the emission of the object it hits is not added."""
+
+    def __init__(self, n, filename_, experiment_name=""):
+        filename_mc = filename_ + "_MC_" + str(n) + "_samples" + experiment_name
+        super().__init__(filename_mc)
+        self.n_samples = n
+
+    def compute_color(self, ray):
+        # ASSIGNMENT 2.3 BEGIN
+        scene = self.scene
+        hit = scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK if scene.env_map is None else scene.env_map.getValue(ray.d)
+        brdf = scene.object_list[hit.primitive_index].get_BRDF()
+        wo = Vector3D(0.0, 0.0, 0.0)  # unused by the Lambertian BRDF
+        sample_set, sample_prob = sample_set_hemisphere(self.n_samples, UniformPDF())
+        color = RGBColor(0.0, 0.0, 0.0)
+        for omega, prob in zip(sample_set, sample_prob):
+            wi = center_around_normal(omega, hit.normal)
+            sample_hit = scene.closest_hit(Ray(hit.hit_point, wi))
+            if sample_hit.has_hit:
+                l_i = scene.object_list[sample_hit.primitive_index].emission
+            elif scene.env_map is not None:
+                l_i = scene.env_map.getValue(wi)
+            else:
+                continue  # nothing there, and no map: no light from omega
+            color = color + l_i.multiply(brdf.get_value(wi, wo, hit.normal)) / prob
+        return color / self.n_samples
+        # ASSIGNMENT 2.3 END
+
+
+# ------------------------------------------------------------------------------------------
+# Bayesian Monte Carlo integrator (Practice 3: the course's stub)
+# ------------------------------------------------------------------------------------------
+class BayesianMonteCarloIntegrator(Integrator):
+    """Bayesian Monte Carlo estimate of the light reflected towards the camera, with the
+    Gaussian process myGP: Practice 3 of the course, still its stub here."""
+
+    def __init__(self, n, myGP, filename_, experiment_name=""):
+        filename_bmc = filename_ + "_BMC_" + str(n) + "_samples" + experiment_name
+        super().__init__(filename_bmc)
+        self.n_samples = n
+        self.myGP = myGP
+
+    def compute_color(self, ray):
+        pass
 
 
 # FRAMEWORK ONLY BEGIN

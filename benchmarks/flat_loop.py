@@ -85,7 +85,9 @@ def flat_phong(scene) -> np.ndarray:
                             continue
                     else:
                         wx, wy, wz, cx, cy, cz, uax, uay, uaz, ubx, uby, ubz = k
-                        den = rx * wx + ry * wy + rz * wz
+                        # t along the direction normalised once more, as the course's
+                        s = 1.0 / sqrt(rx * rx + ry * ry + rz * rz)
+                        den = rx * s * wx + ry * s * wy + rz * s * wz
                         if den == 0.0:
                             continue
                         t = (wx * (cx - ox) + wy * (cy - oy) + wz * (cz - oz)) / den
@@ -114,7 +116,8 @@ def flat_phong(scene) -> np.ndarray:
                         px, py, pz = cx + nx * r, cy + ny * r, cz + nz * r
                     else:  # the point on the ray, the normal facing the ray
                         nx, ny, nz = k[:3]
-                        if dx * nx + dy * ny + dz * nz > 0.0:
+                        s = 1.0 / sqrt(dx * dx + dy * dy + dz * dz)
+                        if dx * s * nx + dy * s * ny + dz * s * nz > 0.0:
                             nx, ny, nz = nx * -1.0, ny * -1.0, nz * -1.0
                         px, py, pz = 0.0 + dx * t, 0.0 + dy * t, 0.0 + dz * t
                     red, green, blue = kr * ambient_r, kg * ambient_g, kb * ambient_b

@@ -29,8 +29,9 @@ EXPECTED = CHECKS / "expected" / "practice1.npz"
 COURSE_MODULES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppRenderer.py")
 # What AppRenderer.py needs besides them, shipped as it is
 # (pyrt/: only the part of the machinery that the handout's modules import)
-SHIPPED_AS_IS = ("pyrt/__init__.py", "pyrt/images.py", "pyrt/compare.py", "pyrt/explain.py",
-                 "pyrt/explain_picture.py", ".vscode/launch.json", ".vscode/settings.json")
+SHIPPED_AS_IS = ("pyrt/__init__.py", "pyrt/images.py", "pyrt/environment_maps.py",
+                 "pyrt/compare.py", "pyrt/explain.py", "pyrt/explain_picture.py",
+                 ".vscode/launch.json", ".vscode/settings.json")
 # The course's figures, which pyrt/compare.py finds in references/
 FIGURES = ("figure1_phong.png", "figure2_lazy.png", "figure3_intersection.png",
            "figure4_depth.png", "figure4_normal.png", "figure5_phong.png")
@@ -62,7 +63,8 @@ BODY_STUBS = {"any_hit": "return False", "compute_color": "pass"}
 # Where each step's blocks may stand: "class" for whole methods, else the methods whose
 # body they are
 STEP_PLACES = {"1.1-1.2": {"class"}, "1.2": {"any_hit", "compute_color"},
-               "1.3": {"compute_color"}, "1.4": {"compute_color"}}
+               "1.3": {"compute_color"}, "1.4": {"compute_color"},
+               "2.3": {"compute_color"}}  # Practice 2's CMCIntegrator, a stub in Practice 1
 FRAMEWORK_ONLY = "FRAMEWORK ONLY"
 
 MARKER = re.compile(r"(?P<indent>[ ]*)# (?P<kind>ASSIGNMENT (?P<step>\S+)|FRAMEWORK ONLY) "

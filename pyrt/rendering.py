@@ -10,10 +10,13 @@ queries used meanwhile, pyrt.acceleration's.
 
 Nothing here changes an image: one process or several give the same pixels, bit for bit.
 """
+import ast
 import contextlib
+import inspect
 import multiprocessing
 import sys
 import tempfile
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -47,6 +50,10 @@ def check_render(integrator, workers, samples_per_pixel, adaptive=False,
     if getattr(scene, "camera", None) is None:
         raise RuntimeError(f"{name}.render: the scene has no camera; call "
                            "scene.set_camera(Camera(width, height, fov)) first")
+    if integrator.traces_rays and is_stub(type(integrator).compute_color):
+        raise NotImplementedError(f"{name}.render: {name}.compute_color is still the "
+                                  "course's stub (its body is `pass`): write it before "
+                                  f"rendering with {name}")
     samples = _check_count("samples_per_pixel", samples_per_pixel)
     if workers is not None:
         workers = _check_count("workers", workers, "None (all cores) or a whole number >= 1")
@@ -60,6 +67,19 @@ def check_render(integrator, workers, samples_per_pixel, adaptive=False,
         scene.rendered_image = np.zeros(shape)
     scene.rendered_image.fill(0.0)
     return scene, workers, sampling
+
+
+def is_stub(function) -> bool:
+    """Whether function's body is only `pass` (a docstring and comments aside), as the
+    course's stubs are; False when its source cannot be read."""
+    try:
+        tree = ast.parse(textwrap.dedent(inspect.getsource(function)))
+    except (OSError, TypeError, SyntaxError):
+        return False
+    body = tree.body[0].body if tree.body and hasattr(tree.body[0], "body") else []
+    if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
+        body = body[1:]  # the docstring
+    return len(body) == 1 and isinstance(body[0], ast.Pass)
 
 
 def _check_count(name, value, allowed="a whole number >= 1"):

@@ -2,7 +2,8 @@
 
 Each ``*_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max)`` is the distance at
 which a primitive's ``intersect`` finds its hit along the ray from (ox, oy, oz) with unit
-direction (dx, dy, dz), or None on a miss; ``constants`` holds what the test reads of the
+direction (dx, dy, dz), or None on a miss (the plane tests measure it along that direction
+normalised once more, as PyRT_Core.course_direction does); ``constants`` holds what the test reads of the
 object, as pyrt.acceleration.queries' ``_object_test`` gathers them. Each ``*_hit`` gives the
 hit point and normal (px, py, pz, nx, ny, nz) at that distance. Every one repeats the
 operations of the method it stands for, in the same order, so that it rounds the same way
@@ -56,7 +57,8 @@ def sphere_hit(constants, ox, oy, oz, dx, dy, dz, t):
 def infinite_plane_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     """InfinitePlane.intersect's distance, or None on a miss."""
     nx, ny, nz, px, py, pz = constants
-    denominator = dx * nx + dy * ny + dz * nz
+    inverse = 1.0 / sqrt(dx * dx + dy * dy + dz * dz)  # Normalize(d) (d is of unit length)
+    denominator = dx * inverse * nx + dy * inverse * ny + dz * inverse * nz
     if denominator == 0.0:
         return None
     t = (nx * (px - ox) + ny * (py - oy) + nz * (pz - oz)) / denominator
@@ -73,7 +75,8 @@ def infinite_plane_hit(constants, ox, oy, oz, dx, dy, dz, t):
 def parallelogram_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     """Parallelogram.intersect's distance, or None on a miss."""
     nx, ny, nz, px, py, pz, uax, uay, uaz, ubx, uby, ubz = constants
-    denominator = dx * nx + dy * ny + dz * nz
+    inverse = 1.0 / sqrt(dx * dx + dy * dy + dz * dz)  # Normalize(d) (d is of unit length)
+    denominator = dx * inverse * nx + dy * inverse * ny + dz * inverse * nz
     if denominator == 0.0:
         return None
     t = (nx * (px - ox) + ny * (py - oy) + nz * (pz - oz)) / denominator
@@ -119,10 +122,11 @@ def aligned_wall_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     b = (d_j t - p_j) u_b,j, exactly as there. There a product of zero and an infinite
     q = d t - p is NaN and fails its test; here too nothing passes then: an infinite t
     makes d_i t infinite or NaN, an infinite q_i or q_j fails its own test, and for a
-    finite t, q_k is near zero, the hit lying on the plane."""
+    finite t, q_k is near zero, the hit lying on the plane. The denominator takes d_k of
+    the direction normalised once more, as parallelogram_distance does."""
     _, _, _, k, numerator, n_k, i, p_i, a_i, j, p_j, b_j = constants
     d = (dx, dy, dz)
-    denominator = d[k] * n_k
+    denominator = d[k] * (1.0 / sqrt(dx * dx + dy * dy + dz * dz)) * n_k
     if denominator == 0.0:
         return None
     t = numerator / denominator
@@ -138,7 +142,8 @@ def aligned_wall_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
 def parallelogram_hit(constants, ox, oy, oz, dx, dy, dz, t):
     """The hit point and normal of Parallelogram.intersect at distance t."""
     nx, ny, nz = constants[:3]
-    if dx * nx + dy * ny + dz * nz > 0.0:
+    ux, uy, uz = unit_components(dx, dy, dz)  # the direction Parallelogram.intersect uses
+    if ux * nx + uy * ny + uz * nz > 0.0:
         nx, ny, nz = nx * -1.0, ny * -1.0, nz * -1.0
     return ox + dx * t, oy + dy * t, oz + dz * t, nx, ny, nz
 

@@ -285,7 +285,7 @@ class StepAt(Integrator):
         return WHITE if x < self.edge else BLACK
 
 
-class Constant(Integrator):
+class ConstantGrey(Integrator):
     """The same grey for every ray; counts its rays."""
 
     def __init__(self, filename_):

@@ -11,6 +11,7 @@ import AppRenderer
 from AppRenderer import sphere_test_scene
 from helpers import REPO, as_tuple, render_image, rgb, run_python
 from pyrt.compare import compare_with_reference
+from pyrt.environment_maps import sky_map
 from PyRT_Core import Parallelogram, Sphere
 from PyRT_Integrators import PhongIntegrator
 
@@ -74,28 +75,29 @@ def test_sphere_test_scene_area_light_replaces_the_point_light():
     assert rgb(light.get_BRDF().kd) == (0, 0, 0)
 
 
-def test_sphere_test_scene_environment_map_is_the_one_at_env_map_path(monkeypatch,
-                                                                       tmp_path):
-    # a 1 x 2 map there: left texel red, right texel blue (OpenCV stores BGR)
-    env_map = tmp_path / "environment.hdr"
-    cv2.imwrite(str(env_map), np.array([[[0, 0, 2], [4, 0, 0]]], dtype=np.float32))
-    monkeypatch.setattr(AppRenderer, "ENV_MAP_PATH", str(env_map))
+def test_sphere_test_scene_environment_map_is_the_courses_from_the_current_folder(
+        monkeypatch, tmp_path):
+    # the course's relative path, env_maps/arch_nozero.hdr, read in grey as the course reads
+    # it: OpenCV's own grey reading of the file, in all three channels
+    write_env_map(tmp_path / "env_maps" / "arch_nozero.hdr")
+    monkeypatch.chdir(tmp_path)
     scene = AppRenderer.sphere_test_scene(use_env_map=True)
-    assert scene.env_map.image.tolist() == [[[2, 0, 0], [0, 0, 4]]]
+    assert np.array_equal(scene.env_map.env_map_hdr, opencv_grey(tmp_path / ENV_MAP))
     assert AppRenderer.sphere_test_scene().env_map is None
 
 
-def test_sphere_test_scene_without_its_environment_map_names_the_missing_file(monkeypatch,
-                                                                              tmp_path):
-    # PyRT ships no map, and no Practice 1 scene needs one: use_env_map=True without a
-    # file at ENV_MAP_PATH stops where the scene is made, naming the file to put there
-    missing = tmp_path / "env_maps" / "environment.hdr"
-    monkeypatch.setattr(AppRenderer, "ENV_MAP_PATH", str(missing))
-    with pytest.raises(FileNotFoundError) as error:
-        AppRenderer.sphere_test_scene(use_env_map=True)
-    message = str(error.value)
-    assert repr(str(missing.resolve())) in message
-    assert "latitude-longitude .hdr image" in message
+def test_without_the_courses_map_one_line_says_where_it_comes_from_and_the_sky_stands_in(
+        monkeypatch, tmp_path, capsys):
+    # the course's map is the course's, not PyRT's to ship: where neither the current folder
+    # nor AppRenderer.py's has it, PyRT's own sky is used instead, and one line says so
+    monkeypatch.chdir(tmp_path)
+    assert not (REPO / ENV_MAP).exists()
+    scene = AppRenderer.sphere_test_scene(use_env_map=True)
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 1
+    assert "env_maps/ folder of the course's base code" in lines[0]
+    assert "PyRT's own sky map stands in" in lines[0]
+    assert np.array_equal(scene.env_map.env_map_hdr, sky_map())
 
 
 def test_cornell_box_scene_has_the_course_numbers():
@@ -139,11 +141,21 @@ def test_cornell_box_area_light_is_a_square_under_the_ceiling():
 # ------------------------------------------------------------------------------------------
 # The 2025-26 handout's sphere_scene(envMap=None)
 # ------------------------------------------------------------------------------------------
+ENV_MAP = "env_maps/arch_nozero.hdr"  # the course's map, as its scenes name it
+
+
 def write_env_map(path):
     """Writes a 1 x 2 latitude-longitude map at path: left texel red (2, 0, 0), right texel
     blue (0, 0, 4)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     cv2.imwrite(str(path), np.array([[[0, 0, 2], [4, 0, 0]]], dtype=np.float32))  # BGR
+
+
+def opencv_grey(path):
+    """The map at path as the course reads it: OpenCV's grey reading (IMREAD_ANYDEPTH),
+    repeated in three channels."""
+    grey = cv2.imread(str(path), flags=cv2.IMREAD_ANYDEPTH)
+    return np.repeat(grey[:, :, None], 3, axis=2)
 
 
 @pytest.fixture(scope="session")
@@ -171,7 +183,9 @@ def test_sphere_scene_sets_the_environment_map_at_a_path_from_the_script_folder(
     write_env_map(tmp_path / "env_maps" / "arch_nozero.hdr")
     monkeypatch.chdir(tmp_path)  # the handout's relative path, from the student's folder
     scene = AppRenderer.sphere_scene(envMap="env_maps/arch_nozero.hdr", width=20, height=20)
-    assert scene.env_map.image.tolist() == [[[2, 0, 0], [0, 0, 4]]]
+    # 0.299 of red 2 and 0.114 of blue 4, to the rounding of the file's 8-bit mantissas
+    assert scene.env_map.env_map_hdr[0, :, 0] == pytest.approx([0.598, 0.456], rel=1e-2)
+    assert np.array_equal(scene.env_map.env_map_hdr, opencv_grey(tmp_path / ENV_MAP))
     # the rest is the sphere scene: Phong, which never looks at the map, sees no difference
     expected = render_image(PhongIntegrator(str(tmp_path / "expected")),
                             sphere_test_scene(width=20, height=20))
@@ -183,9 +197,10 @@ def test_sphere_scene_sets_the_environment_map_at_a_path_from_the_script_folder(
 def test_sphere_scene_refuses_a_missing_environment_map_naming_its_path(tmp_path,
                                                                        monkeypatch,
                                                                        relative):
+    # any map but the course's own, which has a stand-in (above)
     monkeypatch.chdir(tmp_path)
-    missing = (tmp_path / "env_maps" / "arch_nozero.hdr").resolve()
-    given = "env_maps/arch_nozero.hdr" if relative else str(missing)
+    missing = (tmp_path / "env_maps" / "other.hdr").resolve()
+    given = "env_maps/other.hdr" if relative else str(missing)
     with pytest.raises(FileNotFoundError) as error:
         AppRenderer.sphere_scene(given)  # the handout's first argument, envMap
     message = str(error.value)

@@ -179,12 +179,12 @@ def test_set_camera_needs_a_camera():
 def test_add_point_light_sources_needs_a_point_light():
     with pytest.raises(TypeError) as error:
         Scene().add_point_light_sources((0.0, 1.0, 0.0))
-    assert str(error.value) == ("Scene.add_point_light_sources: light must be a PointLight, "
-                                "got (0.0, 1.0, 0.0)")
+    assert str(error.value) == ("Scene.add_point_light_sources: point_light must be a "
+                                "PointLight, got (0.0, 1.0, 0.0)")
 
 
 def test_set_brdf_needs_a_brdf_and_names_the_class():
-    with pytest.raises(TypeError, match=r"^Sphere\.set_BRDF: brdf must be a BRDF such as "
+    with pytest.raises(TypeError, match=r"^Sphere\.set_BRDF: BRDF must be a BRDF such as "
                                         r"Lambertian\(RGBColor\(\.\.\.\)\), got "):
         Sphere(GOOD, 1.0).set_BRDF(RGBColor(0.5, 0.5, 0.5))
 
@@ -232,8 +232,8 @@ def test_lambertian_needs_an_rgb_colour(colour):
 @pytest.mark.parametrize("obj", [Lambertian(BLACK), Vector3D(0.0, 0.0, 0.0), "sphere", None])
 def test_add_object_needs_a_primitive(obj):
     scene = Scene()
-    with pytest.raises(TypeError, match=r"^Scene\.add_object: obj must be a Primitive \(Sphere, "
-                       r"InfinitePlane, Parallelogram or your own subclass\), got "):
+    with pytest.raises(TypeError, match=r"^Scene\.add_object: new_object must be a Primitive "
+                       r"\(Sphere, InfinitePlane, Parallelogram or your own subclass\), got "):
         scene.add_object(obj)
     assert scene.object_list == []
 

@@ -35,7 +35,10 @@ def test_star_import_provides_libraries_and_math_names(name, expected):
 
 @pytest.mark.parametrize("name", [
     "Vector3D", "Dot", "Cross", "Length", "Normalize", "orient_normal", "RGBColor",
-    "BLACK", "WHITE", "GREEN", "RED", "Ray", "HitData", "EnvironmentMap",
+    "BLACK", "WHITE", "GREEN", "RED", "Ray", "HitData", "EnvironmentMap", "random", "PDF",
+    "UniformPDF", "CosinePDF", "Function", "Constant", "CosineLobe", "sample_set_hemisphere",
+    "center_around_normal", "oriented_hemi_dir", "rotate_around_y", "euclidean_to_disk",
+    "visualize_sample_set",
 ])
 def test_star_import_provides_the_course_classes_and_functions(name):
     assert star_import()[name] is getattr(PyRT_Common, name)
@@ -372,7 +375,7 @@ def env_map(tmp_path):
     image_rgb = np.stack([xs + 1.0, ys + 1.0, np.full(xs.shape, 0.5)], axis=2)
     path = tmp_path / "map.hdr"
     assert cv2.imwrite(str(path), image_rgb[:, :, ::-1].astype(np.float32))  # OpenCV: BGR
-    return EnvironmentMap(str(path))
+    return EnvironmentMap(str(path), colour=True)
 
 
 def test_environment_map_missing_file_names_the_path(tmp_path):
@@ -392,10 +395,27 @@ def test_environment_map_that_is_no_image_names_the_file_and_the_formats(tmp_pat
                                 "an .hdr (Radiance) or .exr latitude-longitude image")
 
 
-def test_environment_map_is_stored_as_rgb(env_map):
-    assert env_map.image.shape == (ENV_HEIGHT, ENV_WIDTH, 3)
+def test_environment_map_read_in_colour_is_stored_as_rgb(env_map):
+    assert env_map.env_map_hdr.shape == (ENV_HEIGHT, ENV_WIDTH, 3)
+    assert env_map.env_map_hdr.dtype == np.float32
+    assert (env_map.width, env_map.height) == (ENV_WIDTH, ENV_HEIGHT)
     # texel (x=2, y=3) was written as RGB (3, 4, 0.5)
-    assert tuple(env_map.image[3, 2]) == pytest.approx((3.0, 4.0, 0.5), rel=1e-2)
+    assert tuple(env_map.env_map_hdr[3, 2]) == pytest.approx((3.0, 4.0, 0.5), rel=1e-2)
+
+
+def test_environment_map_is_read_in_grey_as_the_course_reads_it(env_map, tmp_path):
+    # The course's cv2.imread(path, flags=cv2.IMREAD_ANYDEPTH): OpenCV's grey reading,
+    # 0.299 R + 0.587 G + 0.114 B, in all three channels, as float32 values
+    grey_map = EnvironmentMap(str(tmp_path / "map.hdr"))
+    opencv = cv2.imread(str(tmp_path / "map.hdr"), flags=cv2.IMREAD_ANYDEPTH)
+    assert grey_map.env_map_hdr.dtype == np.float32
+    for channel in range(3):
+        assert np.array_equal(grey_map.env_map_hdr[:, :, channel], opencv)
+    # texel (x=2, y=3) was written as RGB (3, 4, 0.5)
+    assert opencv[3, 2] == pytest.approx(0.299 * 3 + 0.587 * 4 + 0.114 * 0.5, rel=1e-2)
+    value = grey_map.getValue(Vector3D(0.0, 0.0, -1.0))  # texel (4, 2)
+    assert all(type(channel) is np.float32 for channel in rgb(value))
+    assert value.r == value.g == value.b == opencv[2, 4]
 
 
 S3 = 1 / math.sqrt(3)

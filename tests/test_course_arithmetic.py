@@ -8,8 +8,10 @@ import AppRenderer
 import course_kit.arithmetic
 import course_kit.handout
 import course_kit.references
-from PyRT_Common import EPSILON, Normalize, Ray, Vector3D
+from helpers import render_image
+from PyRT_Common import BLACK, EPSILON, Dot, Normalize, Ray, Vector3D
 from PyRT_Core import InfinitePlane, Parallelogram, Scene, Sphere
+from PyRT_Integrators import Integrator
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice1_checks as checks  # noqa: E402  (found through the line above)
@@ -98,3 +100,51 @@ def test_it_renders_figure_1s_seams_as_the_course_did():
                                          scene.camera.get_direction(x, y)))
         np.testing.assert_allclose((colour.r, colour.g, colour.b), expected, rtol=1e-12,
                                    atol=0, err_msg=f"pixel ({x}, {y})")
+
+
+class IndexShadowPhong(Integrator):
+    """A Phong of a public student solution: a light counts when the first object its ray
+    towards the hit point meets is the hit's own object (compared by primitive_index)."""
+
+    def __init__(self, filename_):
+        super().__init__(filename_ + "_IndexShadow")
+
+    def compute_color(self, ray):
+        scene = self.scene
+        hit = scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK
+        brdf = scene.object_list[hit.primitive_index].get_BRDF()
+        color = brdf.kd.multiply(scene.i_a)
+        for light in scene.pointLights:
+            to_hit = hit.hit_point - light.pos
+            first = scene.closest_hit(Ray(light.pos, Normalize(to_hit)))
+            if first.has_hit and first.primitive_index == hit.primitive_index:
+                wi = Normalize(light.pos - hit.hit_point)
+                f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
+                color = color + light.intensity.multiply(f) / Dot(to_hit, to_hit)
+        return color
+
+
+def test_a_shadow_test_by_object_index_sees_on_pyrt_what_it_sees_on_the_course(tmp_path):
+    # At the seams the light's ray meets two walls at the same t but for its last bits, and
+    # which one comes first decides the pixel: PyRT's planes measure t along the direction
+    # normalised once more, as the course's do, so at 64 x 64 (where 7 pixels differed
+    # while PyRT took a unit direction as it was) every pixel is the course's, to rounding.
+    size = 64
+    course_scene = course_kit.arithmetic.with_course_arithmetic(
+        AppRenderer.cornell_box_scene(0.75, 2, width=size, height=size))
+    student = IndexShadowPhong("unused")
+    student.add_scene(course_scene)
+    camera = course_scene.camera
+    course = np.zeros((size, size, 3))
+    for y in range(size):
+        for x in range(size):
+            colour = student.compute_color(Ray(Vector3D(0.0, 0.0, 0.0),
+                                               camera.get_direction(x, y)))
+            course[y, x] = (colour.r, colour.g, colour.b)
+    image = render_image(IndexShadowPhong(str(tmp_path / "img")),
+                         AppRenderer.cornell_box_scene(0.75, 2, width=size, height=size),
+                         workers=1)
+    assert np.count_nonzero(course) > size * size  # lit, shadowed and coloured pixels
+    np.testing.assert_allclose(image, course, rtol=1e-9, atol=1e-12)

@@ -32,7 +32,8 @@ import practice1_checks as checks  # noqa: E402  (found through the line above)
 HANDOUT_FILES = [
     ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
     "PyRT_Core.py", "PyRT_Integrators.py", "out/.gitkeep", "pyrt/__init__.py",
-    "pyrt/compare.py", "pyrt/explain.py", "pyrt/explain_picture.py", "pyrt/images.py",
+    "pyrt/compare.py", "pyrt/environment_maps.py", "pyrt/explain.py",
+    "pyrt/explain_picture.py", "pyrt/images.py",
     "pytest.ini", "references/figure1_phong.png", "references/figure2_lazy.png",
     "references/figure3_intersection.png", "references/figure4_depth.png",
     "references/figure4_normal.png", "references/figure5_phong.png", "requirements.txt",

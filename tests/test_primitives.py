@@ -221,22 +221,27 @@ EDGES_OF_UNIT_LENGTH = [(0.0, 0.5, -0.8660254037838613), (0.0, 0.0, -1.000000000
 
 
 @pytest.mark.parametrize("direction", EDGES_OF_UNIT_LENGTH, ids=["shortest", "longest"])
-def test_a_direction_at_either_end_of_the_unit_tolerance_is_taken_as_it_is(direction):
-    # The plane z = -1 lies (-1 - 0) / d.z = 1 / |d.z| along d itself; normalising d first
-    # would move the hit by about 5e-13.
+def test_a_plane_measures_t_along_the_direction_normalised_once_more(direction):
+    # As the course's framework does (the spec's "How the course's framework computes a
+    # hit"): d' = Normalize(d) = d * (1 / |d|), t = Dot(n, point - o) / Dot(d', n), which
+    # for the plane z = -1 seen from the origin is -1 / d'.z, and the hit point is
+    # o + d * t along the ray's own direction, of unit length to within 1e-12.
     assert direction[0] ** 2 + direction[1] ** 2 + direction[2] ** 2 in (1 - 1e-12, 1 + 1e-12)
     plane = InfinitePlane(Vector3D(0.0, 0.0, -1.0), Vector3D(0.0, 0.0, 1.0))
     scene = Scene()
     scene.add_object(plane)
-    along_d = 1.0 / -direction[2]
-    normalised = along_d * math.hypot(*direction)
+    inverse = 1.0 / math.sqrt(direction[0] ** 2 + direction[1] ** 2 + direction[2] ** 2)
+    t = -1.0 / (direction[2] * inverse)
+    along_d = 1.0 / -direction[2]  # where d itself meets the plane, about 5e-13 away
+    assert t != along_d
     for hit in (plane.intersect(ray((0, 0, 0), direction)),
                 scene.closest_hit(ray((0, 0, 0), direction))):
-        assert hit.hit_distance == pytest.approx(along_d, rel=1e-15, abs=0.0)
+        assert hit.hit_distance == t
+        assert tuple(hit.hit_point) == (direction[0] * t, direction[1] * t, direction[2] * t)
     # any_hit agrees: the hit lies beyond a t_max halfway between the two distances when
-    # d is shorter than unit length, before it when d is longer
-    halfway = (along_d + normalised) / 2
-    assert scene.any_hit(ray((0, 0, 0), direction, t_max=halfway)) is (along_d < halfway)
+    # it lies beyond along_d, before it otherwise
+    halfway = (along_d + t) / 2
+    assert scene.any_hit(ray((0, 0, 0), direction, t_max=halfway)) is (t < halfway)
 
 
 # ------------------------------------------------------------------------------------------

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from tqdm import tqdm
 
-from helpers import (GREY, PNG_TOLERANCE, Constant, PixelGrey, StepAt, fov90_scene, pixel_of,
-                     read_png, render_image, small_cornell_box)
+from helpers import (GREY, PNG_TOLERANCE, ConstantGrey, PixelGrey, StepAt, fov90_scene,
+                     pixel_of, read_png, render_image, small_cornell_box)
 from PyRT_Core import *
 from PyRT_Integrators import *
 
@@ -84,7 +84,7 @@ def test_camera_assigned_without_set_camera_is_rendered_at_its_own_size(tmp_path
 def test_rendering_a_scene_again_starts_from_a_black_image(tmp_path):
     # the partial image of a render stopped at row 3 holds no rows of the render before
     scene = fov90_scene(3, 6)
-    render_image(Constant(str(tmp_path / "before")), scene, workers=1)
+    render_image(ConstantGrey(str(tmp_path / "before")), scene, workers=1)
     integrator = InterruptedAtRow3(str(tmp_path / "img"))
     integrator.add_scene(scene)
     with pytest.raises(KeyboardInterrupt):
@@ -291,7 +291,7 @@ def test_render_makes_the_missing_folders_of_its_file_name(tmp_path):
 def test_render_says_in_full_where_it_saved_the_png(tmp_path, monkeypatch, capsys):
     # a relative name is relative to the folder the script is run from, wherever it lies
     monkeypatch.chdir(tmp_path)
-    render_image(Constant("out/img"), fov90_scene(2, 2), workers=1)
+    render_image(ConstantGrey("out/img"), fov90_scene(2, 2), workers=1)
     assert capsys.readouterr().out.splitlines() == [
         f"Saved {tmp_path / 'out' / 'img_Constant.png'} (and .npy, .hdr)"]
     assert (tmp_path / "out" / "img_Constant.png").is_file()

@@ -10,7 +10,7 @@ import pytest
 import pyrt.sampling
 from AppRenderer import sphere_test_scene
 from make_references import SAMPLED_REFERENCE, SAMPLED_REFERENCE_SIZE
-from helpers import (GREY, PNG_TOLERANCE, Constant, PixelGrey, StepAt, fov90_scene,
+from helpers import (GREY, PNG_TOLERANCE, ConstantGrey, PixelGrey, StepAt, fov90_scene,
                      image_point, read_png, render_image, small_cornell_box)
 from PyRT_Common import plt
 from PyRT_Core import *
@@ -254,7 +254,7 @@ def test_refined_pixels_get_the_rays_of_uniform_sampling_and_its_colours(tmp_pat
 
 
 def test_adaptive_render_of_an_image_without_edges_traces_only_the_centre_rays(tmp_path):
-    integrator = Constant(str(tmp_path / "img"))
+    integrator = ConstantGrey(str(tmp_path / "img"))
     image = render_image(integrator, fov90_scene(7, 5), workers=1, samples_per_pixel=16,
                          adaptive=True)
     assert integrator.calls == 7 * 5
@@ -354,11 +354,11 @@ def test_sample_map_is_a_png_whatever_matplotlib_saves_by_default(tmp_path):
 
 def test_adaptive_render_of_an_image_without_edges_shows_no_bar_for_refining(tmp_path,
                                                                             capfd):
-    integrator = Constant(str(tmp_path / "img"))
+    integrator = ConstantGrey(str(tmp_path / "img"))
     integrator.add_scene(fov90_scene(7, 5))
     integrator.render(workers=1, samples_per_pixel=16, adaptive=True)
     err = capfd.readouterr().err
-    assert "Constant centre rays: 100%" in err
+    assert "ConstantGrey centre rays: 100%" in err
     assert "rays at edges" not in err
 
 

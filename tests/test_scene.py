@@ -277,18 +277,20 @@ def test_a_geometric_attribute_lives_in_the_underscore_slot_and_rederives_its_ow
     assert isinstance(Disc.radius, PyRT_Core._GeometricAttribute)
 
 
-def test_set_environment_map_loads_the_map_of_the_scene(tmp_path):
+def test_set_environment_map_loads_the_map_of_the_scene_in_grey(tmp_path):
     # a 2 x 1 map: left half RGB (1, 2, 4), right half (8, 16, 0.5); straight ahead (u = 0.5)
-    # reads the texel under floor(0.5 * (2 - 1)) = 0, the left one
+    # reads the texel under floor(0.5 * (2 - 1)) = 0, the left one; read in grey as the
+    # course reads it, 0.299 R + 0.587 G + 0.114 B in every channel
     path = tmp_path / "sky.hdr"
     image_rgb = np.array([[[1.0, 2.0, 4.0], [8.0, 16.0, 0.5]]], np.float32)
     assert cv2.imwrite(str(path), image_rgb[:, :, ::-1])
     scene = Scene()
-    scene.set_environment_map(str(path))
+    scene.set_environment_map(env_map_path=str(path))
     assert isinstance(scene.env_map, PyRT_Core.EnvironmentMap)
-    assert scene.env_map.image.shape == (1, 2, 3)
-    assert rgb(scene.env_map.getValue(Vector3D(0.0, 0.0, -1.0))) == (1.0, 2.0, 4.0)
-    assert rgb(scene.env_map.getValue(Vector3D(0.0, 0.0, 1.0))) == (8.0, 16.0, 0.5)
+    assert scene.env_map.env_map_hdr.shape == (1, 2, 3)
+    ahead, behind = (rgb(scene.env_map.getValue(Vector3D(0.0, 0.0, z))) for z in (-1.0, 1.0))
+    assert ahead == pytest.approx((0.299 + 1.174 + 0.456,) * 3, rel=1e-2)
+    assert behind == pytest.approx((2.392 + 9.392 + 0.057,) * 3, rel=1e-2)
 
 
 def test_set_pixel_before_set_camera_says_to_set_the_camera_first():

@@ -17,7 +17,10 @@ QUERY_FUNCTIONS = {
     "PyRT_Core.Scene.closest_hit": "b8f3be4604f3fb81",
     "PyRT_Core.Scene.any_hit": "b4260ae7059b6f3d",
     "PyRT_Core.unit_direction": "a918a0f2d2309304",
+    "PyRT_Core.course_direction": "64a22aa7e6fffb14",
+    "PyRT_Core.plane_hit_point": "fb8e16be5e26a818",
     "PyRT_Core.plane_distance": "0654dba6f824c144",
+    "PyRT_Common.Ray.get_hitpoint": "4226c57767ef8a26",
     "PyRT_Core.Normalize": "41257e0e7f7f37cd",
     "PyRT_Core.Length": "4b4d97bb903012e7",
     "PyRT_Core.Dot": "5968b1bc66a4e991",
@@ -26,8 +29,8 @@ QUERY_FUNCTIONS = {
 }
 INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
     Sphere: ("PyRT_Core.Sphere.intersect", "2677b580cdc27c92"),
-    InfinitePlane: ("PyRT_Core.InfinitePlane.intersect", "160459be816b77d7"),
-    Parallelogram: ("PyRT_Core.Parallelogram.intersect", "097e24d3fd5a174c"),
+    InfinitePlane: ("PyRT_Core.InfinitePlane.intersect", "f84fd7ab7eb74ab0"),
+    Parallelogram: ("PyRT_Core.Parallelogram.intersect", "a8a4f043cdad8e4d"),
 }
 # PhongIntegrator.compute_color and what it calls from its own module, named as that module
 # names them: looked up in the module of the Phong integrator registered (register_phong)
