@@ -74,54 +74,59 @@ FULL_EDITION = "2023-24"
 RAY_HEADER = "# -------------------------------------------------RAY CLASS\n"
 VECTOR_HEADER = "# -------------------------------------------------VECTOR 3D CLASS\n"
 ENVIRONMENT_HEADER = "# -------------------------------------------------ENVIRONMENT MAP CLASS\n"
-LATER_PRACTICES = """
-
-# -------------------------------------------------CLASSIC MONTE CARLO INTEGRATOR (PRACTICE 3)
-class CMCIntegrator(Integrator):
-    def __init__(self, n, filename_, experiment_name=''):
-        filename_mc = filename_ + '_MC_' + str(n) + '_samples' + experiment_name
-        super().__init__(filename_mc)
-        self.n_samples = n
-
-    def compute_color(self, ray):
-        # ASSIGNMENT 3: PUT YOUR CODE HERE
-        pass
 
 
-# -------------------------------------------------BAYESIAN MONTE CARLO INTEGRATOR (PRACTICE 4)
-class BayesianMonteCarloIntegrator(Integrator):
-    def __init__(self, n, myGP, filename_, experiment_name=''):
-        filename_bmc = filename_ + '_BMC_' + str(n) + '_samples' + experiment_name
-        super().__init__(filename_bmc)
-        self.n_samples = n
-        self.myGP = myGP
-
-    def compute_color(self, ray):
-        # ASSIGNMENT 4: PUT YOUR CODE HERE
-        pass
-"""
+def _one(text, old, new):
+    """text with its one occurrence of old replaced by new."""
+    assert text.count(old) == 1, old
+    return text.replace(old, new)
 
 
-def _rays_first_with_arrays(common):
-    """2021-22: Ray and HitData stand before Vector3D, with numpy arrays as defaults."""
-    start, end = common.index(RAY_HEADER), common.index(ENVIRONMENT_HEADER)
-    rays = common[start:end].replace("Vector3D(0.0, 0.0, 0.0)", "np.array([0, 0, 0])")
+def _rays_after_vectors(common):
+    """2025-26: Ray and HitData stand after Vector3D and RGBColor, their default vectors
+    Vector3D(0.0, 0.0, 0.0) instead of np.zeros(3)."""
+    start, end = common.index(RAY_HEADER), common.index(VECTOR_HEADER)
+    rays = common[start:end].replace("np.zeros(3)", "Vector3D(0.0, 0.0, 0.0)")
     rest = common[:start] + common[end:]
-    at = rest.index(VECTOR_HEADER)
+    at = rest.index(ENVIRONMENT_HEADER)
     return rest[:at] + rays + rest[at:]
+
+
+def _no_vector_multiply(common):
+    """2021-22 and 2025-26: Vector3D has no multiply (RGBColor has)."""
+    return _one(common, "\n    # element by element multiplication\n"
+                        "    def multiply(self, v):\n"
+                        "        return Vector3D(self.x * v.x, self.y * v.y, self.z * v.z)\n",
+                "")
+
+
+def _no_get_kd(core):
+    """2021-22 and 2025-26: Lambertian has no get_kd (its kd is read directly)."""
+    return _one(core, "\n    def get_kd(self):\n        return self.kd\n", "")
 
 
 def _ambient_unset(core):
     """2025-26: Scene.i_a is None until set_ambient."""
-    old = "        self.i_a = RGBColor(0.0, 0.0, 0.0)  # ambient intensity\n"
-    assert old in core
-    return core.replace(old, "        self.i_a = None  # ambient intensity, set with set_ambient()\n")
+    return _one(core, "        self.i_a = RGBColor(0.0, 0.0, 0.0)  # ambient intensity\n",
+                "        self.i_a = None  # ambient intensity, set with set_ambient()\n")
+
+
+def _integrator_environment_map(integrators):
+    """2021-22: the Integrator holds an environment map of its own, env_map (None until
+    add_environment_map), beside the scene's."""
+    text = _one(integrators, "        self.scene = None\n",
+                "        self.scene = None\n        self.env_map = None\n")
+    return _one(text, "    def add_scene(self, scene):\n        self.scene = scene\n",
+                "    def add_scene(self, scene):\n        self.scene = scene\n\n"
+                "    def add_environment_map(self, env_map_path):\n"
+                "        self.env_map = EnvironmentMap(env_map_path)\n")
 
 
 EDITION_CHANGES = {
-    "2021-22": {"PyRT_Common.py": _rays_first_with_arrays},
-    "2025-26": {"PyRT_Core.py": _ambient_unset,
-                "PyRT_Integrators.py": lambda integrators: integrators + LATER_PRACTICES},
+    "2021-22": {"PyRT_Common.py": _no_vector_multiply, "PyRT_Core.py": _no_get_kd,
+                "PyRT_Integrators.py": _integrator_environment_map},
+    "2025-26": {"PyRT_Common.py": lambda common: _no_vector_multiply(_rays_after_vectors(common)),
+                "PyRT_Core.py": lambda core: _no_get_kd(_ambient_unset(core))},
 }
 
 
@@ -203,7 +208,8 @@ def changed(text, old, new):
 # ------------------------------------------------------------------------------------------
 # Render loops, each printing its progress after every column as students do
 # ------------------------------------------------------------------------------------------
-# 2021-22: Ray()'s default origin is a numpy array, so the student sets ray.o as well
+# 2021-22 and 2023-24: Ray()'s default origin is a numpy array, so the student sets ray.o
+# as well (Ray(direction=d) fails there: its origin minus a Vector3D raises a TypeError)
 RENDER_RAY_THEN_O_AND_D = """\
 def render(self):
     cam = self.scene.camera
@@ -454,7 +460,7 @@ SHADOW_STYLES = {
 RIGHT_2021 = Answers(render=RENDER_RAY_THEN_O_AND_D, any_hit=ANY_HIT_RETURN_IN_LOOP,
                      intersection=INTERSECTION_255, depth=DEPTH_MAX, normal=NORMAL_CHANNELS,
                      phong=PHONG_CLOSEST_HIT_DISTANCE, app_integrator="PhongIntegrator")
-RIGHT_2023 = Answers(render=RENDER_DIRECTION_ONLY, any_hit=ANY_HIT_WHILE,
+RIGHT_2023 = Answers(render=RENDER_RAY_THEN_O_AND_D, any_hit=ANY_HIT_WHILE,
                      intersection=INTERSECTION_RED, depth=DEPTH_IF, normal=NORMAL_CHANNELS,
                      phong=PHONG_START_LIFTED_ALONG_NORMAL, app_integrator="PhongIntegrator")
 RIGHT_2023_HELPERS = Answers(render=RENDER_ORIGIN_AND_DIRECTION, any_hit=ANY_HIT_FLAG_AND_BREAK,
@@ -464,6 +470,11 @@ RIGHT_2023_HELPERS = Answers(render=RENDER_ORIGIN_AND_DIRECTION, any_hit=ANY_HIT
 RIGHT_2025 = Answers(render=RENDER_RAY_THEN_D, any_hit=ANY_HIT_RETURN_IN_LOOP,
                      intersection=INTERSECTION_RED, depth=DEPTH_IF, normal=NORMAL_CHANNELS,
                      phong=PHONG_CLOSEST_HIT_INDEX)
+# Ray(direction=d) works from 2025-26 on, where Ray's default origin is a Vector3D
+RIGHT_2025_DIRECTION_ONLY = Answers(render=RENDER_DIRECTION_ONLY, any_hit=ANY_HIT_WHILE,
+                                    intersection=INTERSECTION_ONE, depth=DEPTH_MAX,
+                                    normal=NORMAL_CHANNELS,
+                                    phong=PHONG_START_LIFTED_ALONG_NORMAL)
 
 UNTOUCHED = {"1.1": "every pixel is GREEN",
              "1.2": "answers False for every ray that hits",
@@ -479,8 +490,8 @@ FIXTURES = (
     Fixture("right_2021_ray_then_o_and_d", "2021-22",
             ("Ray() then ray.o and ray.d", "RGBColor(255, 0, 0)", "any_hit returns in its loop",
              "closest_hit's distance against the light's"), RIGHT_2021),
-    Fixture("right_2023_direction_only", "2023-24",
-            ("Ray(direction=d)", "RED", "any_hit with a while loop",
+    Fixture("right_2023_ray_then_o_and_d", "2023-24",
+            ("Ray() then ray.o and ray.d", "RED", "any_hit with a while loop",
              "start lifted EPSILON along the normal"), RIGHT_2023),
     Fixture("right_2023_origin_and_direction", "2023-24",
             ("Ray(Vector3D(0, 0, 0), cam.get_direction(x, y))", "RGBColor(1, 0, 0)",
@@ -489,6 +500,9 @@ FIXTURES = (
     Fixture("right_2025_ray_then_d", "2025-26",
             ("Ray() then ray.d", "RED", "any_hit returns in its loop",
              "closest_hit's primitive_index against the object's"), RIGHT_2025),
+    Fixture("right_2025_direction_only", "2025-26",
+            ("Ray(direction=d)", "RGBColor(1, 0, 0)", "any_hit with a while loop",
+             "start lifted EPSILON along the normal"), RIGHT_2025_DIRECTION_ONLY),
     # One common mistake each
     Fixture("untouched_2021", "2021-22", ("the base code as handed out",), Answers(),
             UNTOUCHED),
@@ -507,9 +521,10 @@ FIXTURES = (
     Fixture("lazy_loop_2023", "2023-24", ("render() still paints (x/width, y/height, 0)",),
             replace(RIGHT_2023, render=RENDER_LAZY_COLOURS),
             {"1.2": LAZY_LOOP}),
-    Fixture("transposed_2023", "2023-24", ("set_pixel(color, y, x)",),
-            replace(RIGHT_2023, render=changed(RENDER_DIRECTION_ONLY, "set_pixel(color, x, y)",
-                                               "set_pixel(color, y, x)")),
+    Fixture("transposed_2023", "2023-24", ("set_pixel(pixel, y, x)",),
+            replace(RIGHT_2023, render=changed(RENDER_RAY_THEN_O_AND_D,
+                                               "set_pixel(pixel, x, y)",
+                                               "set_pixel(pixel, y, x)")),
             dict.fromkeys(RENDER_STEPS, "transposed")),
     Fixture("any_hit_first_object_2023", "2023-24", ("any_hit tests object_list[0] only",),
             # its Phong finds shadows with closest_hit, so only 1.2 depends on any_hit

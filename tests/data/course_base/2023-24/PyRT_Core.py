@@ -28,8 +28,8 @@ class Scene:
     def add_object(self, new_object):
         self.object_list.append(new_object)
 
-    def add_point_light_sources(self, light):
-        self.pointLights.append(light)
+    def add_point_light_sources(self, point_light):
+        self.pointLights.append(point_light)
 
     # returns True if the ray hits any object of the scene, False otherwise
     def any_hit(self, ray):
@@ -160,14 +160,17 @@ class BRDF(ABC):
 
 
 class Lambertian(BRDF):
-    def __init__(self, diffuse_color):
-        self.kd = diffuse_color / pi
+    def __init__(self, diffuse_colour):
+        self.kd = diffuse_colour / pi
 
-    def get_value(self, incoming, outgoing, normal):
-        cos_theta = Dot(normal, incoming)
+    def get_value(self, wi, wo, normal):
+        cos_theta = Dot(normal, wi)
         if cos_theta > 0.0:
             return self.kd * cos_theta
         return BLACK
+
+    def get_kd(self):
+        return self.kd
 
 
 # -------------------------------------------------LIGHTS

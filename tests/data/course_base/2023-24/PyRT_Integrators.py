@@ -80,3 +80,28 @@ class PhongIntegrator(Integrator):
     def compute_color(self, ray):
         # ASSIGNMENT 1.4: PUT YOUR CODE HERE
         pass
+
+
+# -------------------------------------------------CLASSIC MONTE CARLO INTEGRATOR (PRACTICE 2)
+class CMCIntegrator(Integrator):
+    def __init__(self, n, filename_, experiment_name=''):
+        filename_mc = filename_ + '_MC_' + str(n) + '_samples' + experiment_name
+        super().__init__(filename_mc)
+        self.n_samples = n
+
+    def compute_color(self, ray):
+        # ASSIGNMENT 2.3: PUT YOUR CODE HERE
+        pass
+
+
+# -------------------------------------------------BAYESIAN MONTE CARLO INTEGRATOR (PRACTICE 3)
+class BayesianMonteCarloIntegrator(Integrator):
+    def __init__(self, n, myGP, filename_, experiment_name=''):
+        filename_bmc = filename_ + '_BMC_' + str(n) + '_samples' + experiment_name
+        super().__init__(filename_bmc)
+        self.n_samples = n
+        self.myGP = myGP
+
+    def compute_color(self, ray):
+        # ASSIGNMENT 3: PUT YOUR CODE HERE
+        pass
