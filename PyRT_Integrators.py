@@ -13,7 +13,7 @@ from PyRT_Common import __all__ as _common_names, is_number
 import pyrt.explain
 from pyrt.images import native_path
 # FRAMEWORK ONLY BEGIN
-from pyrt.acceleration.fingerprints import register_phong
+from pyrt.acceleration.fingerprints import register_fused
 from pyrt.rendering import check_render, rendered_blocks
 from pyrt.rows import not_a_color, sampled_row
 from pyrt.sampling import ADAPTIVE_TOLERANCE
@@ -317,7 +317,8 @@ class BayesianMonteCarloIntegrator(Integrator):
 
 
 # FRAMEWORK ONLY BEGIN
-# PyRT's acceleration repeats this compute_color on plain floats, bit for bit: it may stand
-# in for PhongIntegrator's, and only while its source is unchanged (pyrt/acceleration/)
-register_phong(PhongIntegrator)
+# PyRT's acceleration repeats these compute_color methods on plain floats, bit for bit: it
+# may stand in for them, and only while their source is unchanged (pyrt/acceleration/)
+register_fused("phong", PhongIntegrator)
+register_fused("cmc", CMCIntegrator)
 # FRAMEWORK ONLY END

@@ -1,4 +1,5 @@
-"""The flat loop: the course's Phong image made with no objects per pixel and no calls.
+"""The flat loops: the course's Phong and classic Monte Carlo images made with no objects
+per pixel and no calls.
 
 flat_phong renders Figures 1 and 5 (Phong on scenes of spheres and parallelograms lit by
 point lights) in one Python loop: plain floats, numpy only for each row's camera
@@ -12,11 +13,12 @@ are written out once, inside the loop over a pixel's rays (its camera ray, then 
 shadow rays), not in a function: a function would be a call per test, which is what this
 loop measures the framework without.
 """
-from math import sqrt, tan
+import random
+from math import acos, atan2, cos, floor, pi, sin, sqrt, tan
 
 import numpy as np
 
-from PyRT_Common import INFINITY, OFFSET_SCALE, SHADOW_EPSILON
+from PyRT_Common import EPSILON, HUGEVALUE, INFINITY, OFFSET_SCALE, SHADOW_EPSILON
 from PyRT_Core import EDGE_TOLERANCE, Parallelogram, Sphere
 
 
@@ -146,4 +148,147 @@ def flat_phong(scene) -> np.ndarray:
                 t_min, t_max = offset, distance * (1.0 - SHADOW_EPSILON)
             row += (red, green, blue)
         image[y] = np.array(row).reshape(-1, 3)
+    return image
+
+
+def flat_cmc(scene, samples: int, stream_seed: int) -> np.ndarray:
+    """The image CMCIntegrator(samples, ...) renders of a scene of Spheres and
+    Parallelograms with Lambertian BRDFs, no emitting object and an environment map (or
+    none), made by one flat loop: render()'s image bit for bit when stream_seed is the
+    number render() drew to seed its rows (pyrt.rows.RowStreams). The terms of the map are
+    float32, as the course's arithmetic makes them (pyrt.acceleration.monte_carlo), summed
+    with numpy per pixel."""
+    camera, objects = scene.camera, []
+    for obj in scene.object_list:
+        if obj.emission.r or obj.emission.g or obj.emission.b:
+            raise ValueError(f"flat_cmc renders no emitting object, such as {obj!r}")
+        kd = obj.BRDF.kd
+        if type(obj) is Sphere:
+            c = obj.origin
+            constants = (c.x, c.y, c.z, obj.radius)
+        elif type(obj) is Parallelogram:
+            n, p, a, b = obj.normal, obj.point, obj.coordinate_a, obj.coordinate_b
+            constants = (n.x, n.y, n.z, p.x, p.y, p.z, a.x, a.y, a.z, b.x, b.y, b.z)
+        else:
+            raise TypeError(f"flat_cmc renders spheres and parallelograms, not {obj!r}")
+        objects.append((type(obj) is Sphere, constants, (kd.r, kd.g, kd.b)))
+    env_map = scene.env_map
+    if env_map is not None:
+        texels, last_row, last_column = env_map.env_map_hdr, env_map.height - 1, env_map.width - 1
+    low, high = -EDGE_TOLERANCE, 1.0 + EDGE_TOLERANCE
+    width, height = camera.width, camera.height
+    scale_y = tan(camera.vertical_fov / 2.0)
+    scale_x = scale_y * camera.aspect_ratio
+    screen_x = np.array([(2.0 * (x + 0.5) / width - 1.0) * scale_x for x in range(width)])
+    two_pi, prob = 2 * pi, 1 / (2 * pi)
+    ax, ay, az = 0.00319, 1.0, 0.0078  # center_around_normal's jittered up
+    image = np.zeros((height, width, 3))
+    for y in range(height):
+        random.seed(f"{stream_seed}:0:{y}")  # the row's own stream, as render() seeds it
+        screen_y = (1.0 - 2.0 * (y + 0.5) / height) * scale_y
+        inverse = 1.0 / np.sqrt(screen_x * screen_x + screen_y * screen_y + 1.0)
+        for x, (dx, dy, dz) in enumerate(zip((screen_x * inverse).tolist(),
+                                             (screen_y * inverse).tolist(),
+                                             (-inverse).tolist())):
+            # The camera ray, then the pixel's sample rays from the hit point: the nearest
+            # hit of each, a later object only when strictly nearer.
+            ox = oy = oz = 0.0
+            rx, ry, rz, t_min, t_max = dx, dy, dz, 0.0, INFINITY
+            rows, columns, factors = [], [], []  # the map's terms: texel and f
+            draws = None  # the pixel's random numbers, once the camera ray has hit
+            k, cos_theta = 0, 0.0  # the next draw, and the sample ray's cosine
+            while True:
+                nearest = None
+                for sphere, c, kd in objects:
+                    if sphere:
+                        cx, cy, cz, r = c
+                        fx, fy, fz = (ox - cx) / r, (oy - cy) / r, (oz - cz) / r
+                        b = fx * rx + fy * ry + fz * rz
+                        qx, qy, qz = fx - rx * b, fy - ry * b, fz - rz * b
+                        disc = 1.0 - (qx * qx + qy * qy + qz * qz)
+                        if disc < 0.0:
+                            continue
+                        f = sqrt(fx * fx + fy * fy + fz * fz)
+                        if b > 0.0:
+                            q = -b - sqrt(disc)
+                            t0, t1 = q * r, (f - 1.0) * ((f + 1.0) / q) * r
+                        else:
+                            q = sqrt(disc) - b
+                            t0, t1 = (f - 1.0) * ((f + 1.0) / q) * r, q * r
+                        if t_min <= t0 <= t_max:
+                            t = t0
+                        elif t_min <= t1 <= t_max:
+                            t = t1
+                        else:
+                            continue
+                    else:
+                        wx, wy, wz, cx, cy, cz, uax, uay, uaz, ubx, uby, ubz = c
+                        s = 1.0 / sqrt(rx * rx + ry * ry + rz * rz)
+                        den = rx * s * wx + ry * s * wy + rz * s * wz
+                        if den == 0.0:
+                            continue
+                        t = (wx * (cx - ox) + wy * (cy - oy) + wz * (cz - oz)) / den
+                        if not t_min <= t <= t_max:
+                            continue
+                        qx, qy, qz = ox + rx * t - cx, oy + ry * t - cy, oz + rz * t - cz
+                        if not (low <= qx * uax + qy * uay + qz * uaz <= high
+                                and low <= qx * ubx + qy * uby + qz * ubz <= high):
+                            continue
+                    if nearest is not None and t == t_max:
+                        continue  # as far as the nearest so far: the first one stays
+                    nearest, t_max = (sphere, c, kd), t
+                if draws is None:  # the camera ray's nearest hit
+                    if nearest is None:
+                        if env_map is not None:
+                            u = (1 + (1 / pi) * atan2(dx, -dz)) / 2
+                            v = (1 / pi) * acos(min(1.0, max(-1.0, dy)))
+                            image[y, x] = texels[floor(v * last_row), floor(u * last_column)]
+                        break
+                    sphere, c, (kr, kg, kb) = nearest
+                    t = t_max
+                    if sphere:  # the point along the outward normal, one radius out
+                        cx, cy, cz, r = c
+                        vx, vy, vz = (dx * t - cx) / r, (dy * t - cy) / r, (dz * t - cz) / r
+                        s = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
+                        nx, ny, nz = vx * s, vy * s, vz * s
+                        px, py, pz = cx + nx * r, cy + ny * r, cz + nz * r
+                    else:  # the point on the ray, the normal facing the ray
+                        nx, ny, nz = c[:3]
+                        s = 1.0 / sqrt(dx * dx + dy * dy + dz * dz)
+                        if dx * s * nx + dy * s * ny + dz * s * nz > 0.0:
+                            nx, ny, nz = nx * -1.0, ny * -1.0, nz * -1.0
+                        px, py, pz = 0.0 + dx * t, 0.0 + dy * t, 0.0 + dz * t
+                    vx, vy, vz = ay * nz - az * ny, az * nx - ax * nz, ax * ny - ay * nx
+                    s = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
+                    vx, vy, vz = vx * s, vy * s, vz * s
+                    ux, uy, uz = vy * nz - vz * ny, vz * nx - vx * nz, vx * ny - vy * nx
+                    draws = [random.random() for _ in range(2 * samples)]
+                    ox, oy, oz = px, py, pz
+                elif nearest is None and env_map is not None:  # the sample ray sees the map
+                    u = (1 + (1 / pi) * atan2(rx, -rz)) / 2
+                    v = (1 / pi) * acos(min(1.0, max(-1.0, ry)))
+                    rows.append(floor(v * last_row))
+                    columns.append(floor(u * last_column))
+                    factors.append((kr * cos_theta, kg * cos_theta, kb * cos_theta))
+                # The next sample ray in the hemisphere around the normal, facing it
+                while k < 2 * samples:
+                    u1, u2 = draws[k], draws[k + 1]
+                    k += 2
+                    phi = two_pi * u1
+                    sin_theta = sqrt(1 - u2 ** 2)
+                    sx, sy, sz = sin(phi) * sin_theta, u2, cos(phi) * sin_theta
+                    rx, ry, rz = (vx * sx + nx * sy + ux * sz, vy * sx + ny * sy + uy * sz,
+                                  vz * sx + nz * sy + uz * sz)
+                    s = 1.0 / sqrt(rx * rx + ry * ry + rz * rz)
+                    rx, ry, rz = rx * s, ry * s, rz * s
+                    cos_theta = nx * rx + ny * ry + nz * rz
+                    if cos_theta > 0.0:
+                        break
+                else:
+                    break  # no sample left: the pixel is done
+                t_min, t_max = EPSILON, HUGEVALUE
+            if rows:
+                terms = texels[rows, columns] * np.array(factors).astype(np.float32)
+                terms /= np.float32(prob)
+                image[y, x] = np.cumsum(terms, axis=0)[-1] / np.float32(samples)
     return image

@@ -13,7 +13,7 @@ import pyrt.acceleration.accelerated
 import pyrt.acceleration.fingerprints
 from AppRenderer import cornell_box_scene, sphere_test_scene
 from helpers import REPO, fov90_scene, render_image, small_cornell_box
-from pyrt.acceleration.accelerated import accelerated, can_accelerate, can_accelerate_phong
+from pyrt.acceleration.accelerated import accelerated, can_accelerate, can_fuse
 from pyrt.acceleration.phong import AcceleratedPhong
 from pyrt.acceleration.queries import AcceleratedQueries
 from PyRT_Common import *
@@ -178,7 +178,7 @@ def test_accelerated_phong_gives_the_colours_of_phong_integrators_own_code(scene
     integrator = PhongIntegrator("unused")
     integrator.add_scene(scene)
     queries = AcceleratedQueries(scene)
-    assert can_accelerate_phong(integrator, queries)
+    assert can_fuse("phong", integrator, queries)
     fast = AcceleratedPhong(integrator, queries)
     for target in targets:
         direction = Vector3D(*target)
@@ -300,10 +300,10 @@ def test_a_function_edited_in_place_is_not_stood_in_for(monkeypatch):
     scene = fov90_scene(4, 4, [(facing_wall(Sphere), GREY)])
     integrator = PhongIntegrator("unused")
     integrator.add_scene(scene)
-    assert can_accelerate(scene) and can_accelerate_phong(integrator, AcceleratedQueries(scene))
+    assert can_accelerate(scene) and can_fuse("phong", integrator, AcceleratedQueries(scene))
     monkeypatch.setitem(pyrt.acceleration.fingerprints.PHONG_FUNCTIONS, "shadow_ray", "0")
-    assert can_accelerate(scene) and not can_accelerate_phong(
-        integrator, AcceleratedQueries(scene))
+    assert can_accelerate(scene) and not can_fuse("phong", integrator,
+                                                  AcceleratedQueries(scene))
     monkeypatch.setitem(pyrt.acceleration.fingerprints.QUERY_FUNCTIONS, "PyRT_Core.Normalize",
                         "0")
     assert not can_accelerate(scene)
@@ -337,7 +337,7 @@ def test_the_fingerprints_are_those_of_the_functions_the_fast_paths_repeat():
     # path do what it does now, check it with this file's tests, and copy the new
     # fingerprints that `python -m pyrt.acceleration` prints into its tables.
     # The Phong integrator's functions are looked up where it registered itself.
-    assert pyrt.acceleration.fingerprints.phong_integrator() is PhongIntegrator
+    assert pyrt.acceleration.fingerprints.fused_integrator("phong") is PhongIntegrator
     for name, proven, now in pyrt.acceleration.fingerprints.mirrored_functions():
         assert now == proven, name
 

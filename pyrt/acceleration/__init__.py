@@ -4,8 +4,10 @@
 object's ``intersect(ray)``, the nearest hit kept. They are what students read and write,
 and they run whenever code of a student's own could be involved. During a render,
 ``accelerated(integrator)`` stands in for the two methods of a scene of PyRT's own classes
-with those of ``AcceleratedQueries``, and for ``PhongIntegrator.compute_color`` with that
-of ``AcceleratedPhong``; both give the plain code's answers, bit for bit, faster:
+with those of ``AcceleratedQueries``, for ``PhongIntegrator.compute_color`` with that of
+``AcceleratedPhong`` and for ``CMCIntegrator.compute_color`` with that of
+``AcceleratedCMC`` (the same draws of random(), in the same order); all give the plain
+code's answers, bit for bit, faster:
 
 - scalar fast paths: the intersection tests of Sphere, InfinitePlane and Parallelogram
   (pyrt/scalar_intersections.py) and the Phong sum, written out on plain floats in the
@@ -30,11 +32,12 @@ plain code's on random scenes and rays.
 The modules, each on one concern, in the order they import each other:
 
     fingerprints   which functions the fast paths repeat, and whether they are unchanged;
-                   the integrator whose compute_color the fused Phong repeats registers
-                   itself here (register_phong)
+                   the integrators whose compute_color a fused version repeats register
+                   themselves here (register_fused)
     culling        which objects a ray from a point can reach: cones and planes
     queries        AcceleratedQueries: closest_hit and any_hit on plain floats
     phong          AcceleratedPhong: PhongIntegrator.compute_color on plain floats
+    monte_carlo    AcceleratedCMC: CMCIntegrator.compute_color on plain floats
     accelerated    the with-block that stands them in for a render (accelerated, plain)
 
 `python -m pyrt.acceleration` prints the fingerprints of the functions as they are now

@@ -1,11 +1,13 @@
-"""The with-block that stands the fast queries and the fused Phong in for a scene's and an
-integrator's own methods during a render, and takes them off again."""
+"""The with-block that stands the fast queries and the fused integrators (Phong, classic
+Monte Carlo) in for a scene's and an integrator's own methods during a render, and takes
+them off again."""
 import sys
 from contextlib import contextmanager
 
 from PyRT_Core import Scene
 from pyrt.acceleration.fingerprints import (INTERSECT_FUNCTIONS, QUERY_FUNCTIONS,
-                                            phong_integrator, phong_unchanged, unchanged)
+                                            fused_integrator, fused_unchanged, unchanged)
+from pyrt.acceleration.monte_carlo import AcceleratedCMC
 from pyrt.acceleration.phong import AcceleratedPhong
 from pyrt.acceleration.queries import AcceleratedQueries
 
@@ -13,6 +15,8 @@ from pyrt.acceleration.queries import AcceleratedQueries
 # the plain methods in place: the setup would cost more than it saves.
 MIN_RAYS_PER_LIST = 8
 QUERIES = ("closest_hit", "any_hit")
+# The fused integrators, by the name under which their integrator class registers
+FUSED_INTEGRATORS = {"phong": AcceleratedPhong, "cmc": AcceleratedCMC}
 
 
 @contextmanager
@@ -20,8 +24,8 @@ def accelerated(integrator, rays=None):
     """A with-block during which the queries of the integrator's scene are those of an
     AcceleratedQueries, when it may stand in for them (can_accelerate) and `rays`, the
     camera rays the block traces, repay its setup (None: assume they do); and, for PyRT's
-    own PhongIntegrator, compute_color that of an AcceleratedPhong. Nothing may change the
-    scene meanwhile, as during a render."""
+    own PhongIntegrator and CMCIntegrator, compute_color that of an AcceleratedPhong or an
+    AcceleratedCMC. Nothing may change the scene meanwhile, as during a render."""
     scene = integrator.scene
     if not can_accelerate(scene) or (
             rays is not None and rays < MIN_RAYS_PER_LIST * (len(scene.pointLights) + 1)):
@@ -30,8 +34,9 @@ def accelerated(integrator, rays=None):
     queries = AcceleratedQueries(scene)
     for name in QUERIES:
         setattr(scene, name, getattr(queries, name))
-    if can_accelerate_phong(integrator, queries):
-        integrator.compute_color = AcceleratedPhong(integrator, queries).compute_color
+    for name, fused in FUSED_INTEGRATORS.items():
+        if can_fuse(name, integrator, queries) and fused.can_stand_in(integrator):
+            integrator.compute_color = fused(integrator, queries).compute_color
     try:
         yield integrator
     finally:
@@ -45,7 +50,7 @@ def plain(obj):
     own = getattr(obj, "__dict__", {})
     for name in QUERIES + ("compute_color",):
         if isinstance(getattr(own.get(name), "__self__", None),
-                      (AcceleratedQueries, AcceleratedPhong)):
+                      (AcceleratedQueries, *FUSED_INTEGRATORS.values())):
             del own[name]
 
 
@@ -62,15 +67,17 @@ def can_accelerate(scene) -> bool:
             and unchanged(QUERY_FUNCTIONS))
 
 
-def can_accelerate_phong(integrator, queries) -> bool:
-    """Whether AcceleratedPhong may stand in for the integrator's compute_color: it is
-    the registered PhongIntegrator's compute_color, which with every function it calls is
-    unchanged, and every object of the scene is tested by a scalar fast path."""
-    phong = phong_integrator()
-    return (phong is not None and type(integrator).compute_color is phong.compute_color
+def can_fuse(name, integrator, queries) -> bool:
+    """Whether the fused version `name` (of FUSED_INTEGRATORS) may stand in for the
+    integrator's compute_color: it is the compute_color of the integrator class registered
+    for it, which with every function it calls is unchanged, and every object of the
+    scene is tested by a scalar fast path."""
+    registered = fused_integrator(name)
+    return (registered is not None
+            and type(integrator).compute_color is registered.compute_color
             and "compute_color" not in vars(integrator)
             and all(entry[0] is not None for entry in queries.everywhere)
-            and phong_unchanged())
+            and fused_unchanged(name))
 
 
 def debugger_attached() -> bool:

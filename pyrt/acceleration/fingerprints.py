@@ -1,6 +1,7 @@
 """Which functions the fast paths repeat, and whether they are still what they were when
-the fast paths were proven equal to them: fingerprints of their source, and the Phong
-integrator that the fused Phong may stand in for, which its own module registers."""
+the fast paths were proven equal to them: fingerprints of their source, and the
+integrators (Phong, classic Monte Carlo) that a fused version may stand in for, which
+their own module registers."""
 import hashlib
 import inspect
 import sys
@@ -33,7 +34,7 @@ INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
     Parallelogram: ("PyRT_Core.Parallelogram.intersect", "a8a4f043cdad8e4d"),
 }
 # PhongIntegrator.compute_color and what it calls from its own module, named as that module
-# names them: looked up in the module of the Phong integrator registered (register_phong)
+# names them: looked up in the module of the Phong integrator registered (register_fused)
 PHONG_FUNCTIONS = {
     "PhongIntegrator.compute_color": "4c6b5443bdfb642b",
     "shadow_ray": "32ca8d4a3ead2a3b",
@@ -52,6 +53,34 @@ PHONG_CALLS = {  # what PhongIntegrator.compute_color calls of the modules benea
     "PyRT_Common.RGBColor.__truediv__": "85e151eb11f94b85",
     "PyRT_Common.RGBColor.multiply": "db6e9f232b4675f8",
 }
+# CMCIntegrator.compute_color and what it calls, as for Phong
+CMC_FUNCTIONS = {
+    "CMCIntegrator.compute_color": "98685eeb9351c0ad",
+    "sample_set_hemisphere": "96811dd0dbd0d5fd",
+    "center_around_normal": "35252ba91566888f",
+    "UniformPDF.get_val": "c96ffa7b144b10b6",
+    "UniformPDF.generate_dir": "5c490cc04585c51c",
+    "Normalize": "41257e0e7f7f37cd",
+    "Cross": "231231219460270a",
+}
+CMC_CALLS = {
+    "PyRT_Core.Primitive.get_BRDF": "5009389ae19f8874",
+    "PyRT_Core.Lambertian.get_value": "4a56e9c61b6d4186",
+    "PyRT_Common.EnvironmentMap.getValue": "c10cca36338c7e73",
+    "PyRT_Common.EnvironmentMap.euclideanToLatLong": "668772b80c629197",
+    "PyRT_Common.unit_components": "4fddd540ec7253a7",
+    "PyRT_Common.Ray.__init__": "308e8987ef15745f",
+    "PyRT_Common.Vector3D.__init__": "b493185bd8c49e96",
+    "PyRT_Common.Vector3D.__add__": "49d113308126edbd",
+    "PyRT_Common.Vector3D.__mul__": "566dee40a844b2a9",
+    "PyRT_Common.RGBColor.__init__": "21b84a3a382253a2",
+    "PyRT_Common.RGBColor.__add__": "126ec3224ad46034",
+    "PyRT_Common.RGBColor.__truediv__": "85e151eb11f94b85",
+    "PyRT_Common.RGBColor.multiply": "db6e9f232b4675f8",
+}
+# The integrators whose compute_color a fused version repeats, by name: the functions of
+# their own module (looked up there) and of the modules beneath it
+FUSED = {"phong": (PHONG_FUNCTIONS, PHONG_CALLS), "cmc": (CMC_FUNCTIONS, CMC_CALLS)}
 
 
 def unchanged(functions, namespace=None) -> bool:
@@ -84,39 +113,42 @@ def fingerprint(function) -> str:
     return hashlib.sha256(source.encode()).hexdigest()[:16]
 
 
-# The Phong integrator class whose compute_color AcceleratedPhong repeats, once its module
-# has registered it: the acceleration stands beneath the integrators and never imports them.
-_phong_integrator = []
+# The integrator classes whose compute_color a fused version repeats, once their module has
+# registered them: the acceleration stands beneath the integrators and never imports them.
+_registered = {}
 
 
-def register_phong(integrator_class):
-    """Registers the integrator class whose compute_color AcceleratedPhong repeats
-    (PyRT_Integrators registers its PhongIntegrator); the last one registered counts."""
-    _phong_integrator[:] = [integrator_class]
+def register_fused(name, integrator_class):
+    """Registers the integrator class whose compute_color the fused version `name` (a key
+    of FUSED) repeats (PyRT_Integrators registers its PhongIntegrator and CMCIntegrator);
+    the last one registered counts."""
+    _registered[name] = integrator_class
 
 
-def phong_integrator():
-    """The Phong integrator class registered (register_phong), or None."""
-    return _phong_integrator[0] if _phong_integrator else None
+def fused_integrator(name):
+    """The integrator class registered for the fused version `name`, or None."""
+    return _registered.get(name)
 
 
-def phong_namespace():
-    """The globals of the registered Phong integrator's module, where PHONG_FUNCTIONS are
-    looked up (empty before one is registered)."""
-    phong = phong_integrator()
-    return vars(sys.modules[phong.__module__]) if phong is not None else {}
+def fused_namespace(name):
+    """The globals of the module of the integrator registered for `name`, where its table
+    of own functions is looked up (empty before one is registered)."""
+    integrator = fused_integrator(name)
+    return vars(sys.modules[integrator.__module__]) if integrator is not None else {}
 
 
-def phong_unchanged() -> bool:
-    """Whether the registered Phong integrator's compute_color and every function it calls
-    have the source they had when AcceleratedPhong was proven equal to it."""
-    return unchanged(PHONG_FUNCTIONS, phong_namespace()) and unchanged(PHONG_CALLS)
+def fused_unchanged(name) -> bool:
+    """Whether the registered integrator's compute_color and every function it calls have
+    the source they had when the fused version `name` was proven equal to it."""
+    functions, calls = FUSED[name]
+    return unchanged(functions, fused_namespace(name)) and unchanged(calls)
 
 
 def mirrored_functions():
     """(name, fingerprint when proven, fingerprint now) of every function the fast paths
-    repeat, table after table (the registered Phong integrator's last)."""
-    tables = [(QUERY_FUNCTIONS, None), (dict(INTERSECT_FUNCTIONS.values()), None),
-              (PHONG_CALLS, None), (PHONG_FUNCTIONS, phong_namespace())]
+    repeat, table after table (each registered integrator's own after its calls)."""
+    tables = [(QUERY_FUNCTIONS, None), (dict(INTERSECT_FUNCTIONS.values()), None)]
+    for name, (functions, calls) in FUSED.items():
+        tables += [(calls, None), (functions, fused_namespace(name))]
     return [(name, digest, fingerprint(current(name, namespace)))
             for functions, namespace in tables for name, digest in functions.items()]

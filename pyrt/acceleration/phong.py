@@ -52,6 +52,11 @@ class AcceleratedPhong:
                        for light, towards in zip(scene.pointLights,
                                                  map(TowardsLight._make, queries.towards_light))]
 
+    @staticmethod
+    def can_stand_in(integrator) -> bool:
+        """Whether it may stand in for the integrator on its scene: on any scene."""
+        return True
+
     def compute_color(self, ray):
         """PhongIntegrator.compute_color(ray)."""
         d, o = ray.d, ray.o

@@ -1,0 +1,129 @@
+"""AcceleratedCMC: CMCIntegrator.compute_color, equal to it bit for bit for the same draws
+of random(), on plain floats, with the fast queries for its sample rays."""
+from math import acos, atan2, cos, floor, pi, sin, sqrt
+
+import numpy as np
+
+from PyRT_Common import BLACK, EPSILON, HUGEVALUE, RGBColor, sample_set_hemisphere, unit_components
+from PyRT_Core import UNIT_HIGH, UNIT_LOW, Lambertian
+from pyrt.scalar_intersections import POINT_AND_NORMAL
+
+# center_around_normal's "jittered up", the vector its frame starts from
+JITTERED_UP = (0.00319, 1.0, 0.0078)
+
+
+class AcceleratedCMC:
+    """CMCIntegrator.compute_color, equal to it bit for bit, for a scene whose queries are
+    an AcceleratedQueries of PyRT's primitives: the same draws of random(), in the same
+    order, and the same operations on plain floats. The frame of center_around_normal is
+    made once per pixel (it depends on the normal alone); the sample rays are traced
+    without a Ray or a HitData; Lambertian's get_value is inline.
+
+    The environment map's texels are float32 (as OpenCV reads them), and so is the
+    course's arithmetic on them: each term L * f / p and their running sum are float32
+    operations, which numpy does here on all the terms of a pixel at once, in the same
+    order (a float32 sum or product of two float32 numbers, computed in double precision
+    and rounded to float32, is the float32 operation's result). The other terms are
+    doubles. A scene with both a map and an object that emits light mixes the two kinds
+    of term in an order-dependent way: there the plain code runs (can_stand_in)."""
+
+    def __init__(self, integrator, queries):
+        self.integrator, self.queries = integrator, queries
+        scene = integrator.scene
+        self.objects = scene.object_list
+        self.emissions = [(obj.emission.r, obj.emission.g, obj.emission.b)
+                          for obj in scene.object_list]
+        self.env_map = env_map = scene.env_map
+        if env_map is not None:
+            self.texels = env_map.env_map_hdr
+            self.last_column, self.last_row = env_map.width - 1, env_map.height - 1
+        self.samples = integrator.n_samples
+        # the scalar test of every object, in the order of object_list (can_fuse: every
+        # object has one), for the sample rays, which start anywhere
+        self.tests = [entry[:3] for entry in queries.everywhere]
+        # random() as sample_set_hemisphere draws it: Python's global generator
+        self.random = sample_set_hemisphere.__globals__["random"]
+
+    @staticmethod
+    def can_stand_in(integrator) -> bool:
+        """Whether the scene's terms are all of one kind: no environment map, or no object
+        that emits light (see above)."""
+        scene = integrator.scene
+        return scene.env_map is None or not any(
+            obj.emission.r or obj.emission.g or obj.emission.b for obj in scene.object_list)
+
+    def compute_color(self, ray):
+        """CMCIntegrator.compute_color(ray)."""
+        d, o = ray.d, ray.o
+        dx, dy, dz, ox, oy, oz = d.x, d.y, d.z, o.x, o.y, o.z
+        if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:
+            return self.plain_color(ray)
+        nearest = self.queries.nearest(None, ox, oy, oz, dx, dy, dz, ray.t_min, ray.t_max)
+        if nearest is None:
+            return BLACK if self.env_map is None else self.env_map.getValue(ray.d)
+        test, constants, index, t = nearest
+        brdf = self.objects[index].get_BRDF()
+        if type(brdf) is not Lambertian:
+            return self.plain_color(ray)
+        px, py, pz, nx, ny, nz = POINT_AND_NORMAL[test](constants, ox, oy, oz, dx, dy, dz, t)
+        kd = brdf.kd
+        kr, kg, kb = kd.r, kd.g, kd.b
+        # center_around_normal's frame: w = n, v = Normalize(Cross(up, w)), u = Cross(v, w)
+        ax, ay, az = JITTERED_UP
+        vx, vy, vz = unit_components(ay * nz - az * ny, az * nx - ax * nz, ax * ny - ay * nx)
+        ux, uy, uz = vy * nz - vz * ny, vz * nx - vx * nz, vx * ny - vy * nx
+        # sample_set_hemisphere(n, UniformPDF()): u1 then u2 for each sample, all first
+        draw = self.random
+        draws = [draw() for _ in range(2 * self.samples)]
+        prob = 1 / (2 * pi)  # UniformPDF.get_val
+        tests, emissions, env_map = self.tests, self.emissions, self.env_map
+        red = green = blue = 0.0  # the sum of the terms that are doubles
+        map_rows, map_columns, map_factors = [], [], []  # the float32 terms' L and f
+        for k in range(0, len(draws), 2):
+            u1, u2 = draws[k], draws[k + 1]
+            phi = 2 * pi * u1  # UniformPDF.generate_dir
+            sin_theta = sqrt(1 - u2 ** 2)
+            x, y, z = sin(phi) * sin_theta, u2, cos(phi) * sin_theta
+            # center_around_normal: Normalize(v x + w y + u z)
+            wx, wy, wz = (vx * x + nx * y + ux * z, vy * x + ny * y + uy * z,
+                          vz * x + nz * y + uz * z)
+            inverse = 1.0 / sqrt(wx * wx + wy * wy + wz * wz)  # unit_components' arithmetic
+            wx, wy, wz = wx * inverse, wy * inverse, wz * inverse
+            cos_theta = nx * wx + ny * wy + nz * wz  # Lambertian.get_value(wi, wo, n)
+            if not cos_theta > 0.0:
+                continue  # f is BLACK: the term adds nothing
+            # scene.closest_hit(Ray(hit_point, wi)), as AcceleratedQueries.nearest answers
+            # it (wi, normalised above, is of unit length): only a strictly nearer hit
+            # replaces the nearest so far
+            hit_index, t_max = None, HUGEVALUE
+            for test, constants, index in tests:
+                t = test(constants, px, py, pz, wx, wy, wz, EPSILON, t_max)
+                if t is not None and (hit_index is None or t < t_max):
+                    hit_index, t_max = index, t
+            if hit_index is not None:
+                er, eg, eb = emissions[hit_index]
+                if er or eg or eb:  # L.multiply(f) / prob, in doubles
+                    red += er * (kr * cos_theta) / prob
+                    green += eg * (kg * cos_theta) / prob
+                    blue += eb * (kb * cos_theta) / prob
+            elif env_map is not None:  # env_map.getValue(wi): the texel under (u, v)
+                u = (1 + (1 / pi) * atan2(wx, -wz)) / 2
+                v = (1 / pi) * acos(min(1.0, max(-1.0, wy)))
+                map_rows.append(floor(v * self.last_row))
+                map_columns.append(floor(u * self.last_column))
+                map_factors.append((kr * cos_theta, kg * cos_theta, kb * cos_theta))
+        if map_rows:
+            return self.map_color(map_rows, map_columns, map_factors)
+        return RGBColor(red / self.samples, green / self.samples, blue / self.samples)
+
+    def map_color(self, rows, columns, factors):
+        """The colour of a pixel whose terms are the map's (see above): the float32 sum of
+        texel * f / prob over the samples, in their order, over n_samples."""
+        terms = self.texels[rows, columns] * np.array(factors).astype(np.float32)
+        terms /= np.float32(1 / (2 * pi))
+        total = np.cumsum(terms, axis=0)[-1] / np.float32(self.samples)
+        return RGBColor(float(total[0]), float(total[1]), float(total[2]))
+
+    def plain_color(self, ray):
+        """CMCIntegrator's own compute_color, with the accelerated queries."""
+        return type(self.integrator).compute_color(self.integrator, ray)
