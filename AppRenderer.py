@@ -124,11 +124,26 @@ INTEGRATORS = {
     "depth": DepthIntegrator,
     "normal": NormalIntegrator,
     "phong": PhongIntegrator,
+    "cmc": CMCIntegrator,  # Practice 2: classic Monte Carlo, n samples per hit
 }
+MONTE_CARLO = ("cmc",)  # the integrators that take --samples
 SCENES = {
     "cornell": lambda width, height: cornell_box_scene(0.75, 2, width=width, height=height),
     "sphere": lambda width, height: sphere_test_scene(width=width, height=height),
+    # Practice 2's Figure 3: the sphere scene lit by the course's environment map
+    "sphere-map": lambda width, height: sphere_scene(ENV_MAP_PATH, width=width,
+                                                     height=height),
+    # the Cornell box lit by the square area light under its ceiling
+    "cornell-area": lambda width, height: cornell_box_scene(0.75, 2, areaLS=True,
+                                                            width=width, height=height),
 }
+# The scene each integrator renders when --scene is not given: Figure 1 of Practice 1, and
+# Figure 3 of Practice 2 for the Monte Carlo integrator
+DEFAULT_SCENES = {"cmc": "sphere-map"}
+DEFAULT_SCENE = "cornell"
+# Samples per hit of the Monte Carlo integrator when --samples is not given, as in the
+# course's Figure 3 of Practice 2
+DEFAULT_SAMPLES = 40
 # (figure, integrator, scene, max_depth): Figure 4 has two images, depth and normal
 FIGURES = [
     ("figure1", "phong", "cornell", None),
@@ -140,10 +155,13 @@ FIGURES = [
 ]
 
 
-def make_integrator(name, filename, max_depth=None, experiment_name=""):
-    """The integrator called `name` (a key of INTEGRATORS) writing to `filename`."""
+def make_integrator(name, filename, max_depth=None, experiment_name="", samples=None):
+    """The integrator called `name` (a key of INTEGRATORS) writing to `filename`; samples
+    is the Monte Carlo integrator's n (default DEFAULT_SAMPLES)."""
     if name == "depth" and max_depth is not None:
         return DepthIntegrator(filename, max_depth, experiment_name)
+    if name == "cmc":
+        return CMCIntegrator(samples or DEFAULT_SAMPLES, filename, experiment_name)
     return INTEGRATORS[name](filename, experiment_name=experiment_name)
 
 
@@ -350,10 +368,18 @@ def parse_args(argv):
                     "Cornell box (Figure 1), saved as out/rendered_image_Phong.png "
                     "(.npy, .hdr) and shown in a window.")
     parser.add_argument("--integrator", choices=INTEGRATORS, default="phong",
-                        help="how to colour each pixel (default: phong)")
-    parser.add_argument("--scene", choices=SCENES, default="cornell",
+                        help="how to colour each pixel (default: phong; cmc: classic Monte "
+                             "Carlo, Practice 2)")
+    parser.add_argument("--scene", choices=SCENES, default=None,
                         help="cornell: the Cornell box of Figure 1; sphere: the sphere above "
-                             "a floor of Figures 2-5 (default: cornell)")
+                             "a floor of Figures 2-5; sphere-map: the same lit by the "
+                             "course's environment map (Practice 2, Figure 3); cornell-area: "
+                             "the Cornell box lit by an area light (default: cornell, and "
+                             "sphere-map for cmc)")
+    parser.add_argument("--samples", type=positive_arg(int), default=None,
+                        help="with --integrator cmc: the directions sampled at each hit "
+                             f"(default {DEFAULT_SAMPLES}), apart from --spp, the camera rays "
+                             "per pixel")
     parser.add_argument("--width", type=positive_arg(int), default=500,
                         help="image width in pixels (default 500)")
     parser.add_argument("--height", type=positive_arg(int), default=500,
@@ -403,6 +429,11 @@ def parse_args(argv):
             parser.error(f"argument --explain: pixel ({x}, {y}) is not in the {args.width} "
                          f"x {args.height} image: x goes from 0 to {args.width - 1}, y from "
                          f"0 to {args.height - 1}")
+    if args.samples is not None and args.integrator not in MONTE_CARLO:
+        parser.error("argument --samples: only applies with --integrator "
+                     + " or ".join(MONTE_CARLO))
+    if args.scene is None:
+        args.scene = DEFAULT_SCENES.get(args.integrator, DEFAULT_SCENE)
     # FRAMEWORK ONLY BEGIN
     if args.adaptive and args.spp == 1:
         parser.error("argument --adaptive: needs --spp N with N of 2 or more, the rays the "
@@ -436,7 +467,8 @@ def main(argv=None):
     if args.all_figures:
         jobs = [(figure_integrator(entry, base), SCENES[entry[2]]) for entry in FIGURES]
     else:
-        jobs = [(make_integrator(args.integrator, base, args.max_depth), SCENES[args.scene])]
+        jobs = [(make_integrator(args.integrator, base, args.max_depth, samples=args.samples),
+                 SCENES[args.scene])]
     options = render_options(args)
     pngs = [render(integrator, make_scene(args.width, args.height), **options)
             for integrator, make_scene in jobs]
