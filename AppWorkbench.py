@@ -316,9 +316,19 @@ def parse_args(argv):
     return args
 
 
+def refuse(message: str) -> int:
+    """Prints a one-line error of the command line; returns the exit status 1."""
+    print(f"AppWorkbench.py: error: {message}", file=sys.stderr)
+    return 1
+
+
 def main(argv=None) -> int:
     """Runs the workbench as the command line asks; returns the exit status."""
     args = parse_args(argv)
+    try:  # the folder first: a wrong --out is said before the estimates, not after them
+        args.out.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        return refuse(f"cannot make the folder {args.out} for the plot: {error.strerror}")
     random.seed(args.seed)
 
     # The integrand, the methods and the experimental set-up, as the course names them
@@ -342,18 +352,16 @@ def main(argv=None) -> int:
     figure = plot_errors(ns_vector, results, methods, sigmas, integrand, n_estimates)
     path = args.out / FILENAME
     try:
-        args.out.mkdir(parents=True, exist_ok=True)
         figure.savefig(path, dpi=100)
     except OSError as error:
-        print(f"AppWorkbench.py: error: cannot save the plot as {path}: {error.strerror}",
-              file=sys.stderr)
-        return 1
+        return refuse(f"cannot save the plot as {path}: {error.strerror}")
     print(f"Saved {path}")
     if not args.no_window:
         if has_screen():
             plt.show()
         else:
             print("No screen: the plot is saved, not shown.")
+    plt.close(figure)
     return 0
 
 
