@@ -238,9 +238,15 @@ def plot_errors(ns_vector, results: np.ndarray, methods: list, sigmas: list,
 
 
 def label_log_axis(axis, low: float, high: float):
-    """Labels a log axis from low to high with plain numbers (0.2, not 2 x 10^-1): 1 to 9
-    times each power of ten when it spans less than a decade, 1, 2 and 5 times across more."""
-    subs = range(1, 10) if high / low < 10 else (1, 2, 5)
+    """Labels a log axis from low to high with plain numbers (0.2, not 2 x 10^-1), every
+    0.5 from 1 to 9.5 times each power of ten when it spans less than a factor 3, every 1
+    within a decade, and 1, 2 and 5 times each power of ten across more."""
+    if high / low < 3:
+        subs = np.arange(1.0, 10.0, 0.5)
+    elif high / low < 10:
+        subs = range(1, 10)
+    else:
+        subs = (1, 2, 5)
     axis.set_major_locator(LogLocator(subs=subs))
     axis.set_major_formatter(StrMethodFormatter("{x:g}"))
     axis.set_minor_formatter(NullFormatter())
