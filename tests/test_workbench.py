@@ -142,6 +142,24 @@ def test_the_plot_draws_each_method_with_its_marker_and_theory_dashed_on_log_axe
     plt.close(figure)
 
 
+@pytest.mark.parametrize("backend, platform, display, screen", [
+    ("agg", "linux", ":0", False),  # a backend that draws into files only
+    ("TkAgg", "linux", None, False),  # on Linux, no DISPLAY: no screen
+    ("TkAgg", "linux", ":0", True),
+    ("TkAgg", "win32", None, True),
+])
+def test_the_plot_is_shown_only_with_an_interactive_backend_and_a_display(
+        monkeypatch, backend, platform, display, screen):
+    monkeypatch.setattr(AppWorkbench.matplotlib, "get_backend", lambda: backend)
+    monkeypatch.setattr(AppWorkbench.sys, "platform", platform)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    if display is None:
+        monkeypatch.delenv("DISPLAY", raising=False)
+    else:
+        monkeypatch.setenv("DISPLAY", display)
+    assert AppWorkbench.has_screen() is screen
+
+
 # ------------------------------------------------------------------------------------------
 # The script
 # ------------------------------------------------------------------------------------------
