@@ -158,7 +158,7 @@ def trade(reference_samples: int, workers: int, folder: Path, out: Path) -> str:
         rows.append([samples, f"{error:.4f}", f"{elapsed:.2f}", f"{error * elapsed:.4f}",
                      f"{error ** 2 * elapsed:.5f}"])
     slope = float(np.polyfit(np.log(TRADE_SAMPLES), np.log(errors), 1)[0])
-    plot_trade(errors, out / "monte_carlo_rmse.png")
+    plot_trade(errors, reference_samples, out / "monte_carlo_rmse.png")
     plot_error_image(images[ERROR_IMAGE_SAMPLES], reference, out / "monte_carlo_error.png")
     table = markdown_table(["N (samples per hit)", "RMSE", "Time (s)", "RMSE x time",
                             "RMSE^2 x time"], rows, 0)
@@ -185,14 +185,19 @@ def adaptive_against_uniform(reference: np.ndarray, workers: int, folder: Path) 
             + markdown_table(["Sampling", "RMSE", "Time (s)"], rows, 1))
 
 
-def plot_trade(errors: list, path: Path) -> None:
-    """RMSE against N on log-log axes, with the line of slope -1/2 through the first."""
+def plot_trade(errors: list, reference_samples: int, path: Path) -> None:
+    """RMSE against N on log-log axes, with the line of slope -1/2 through the first, and
+    what it becomes measured against a reference of its own error: the reference of
+    M samples adds its variance sigma^2/M to each image's sigma^2/N."""
     import matplotlib.pyplot as plt
     figure, axes = plt.subplots(figsize=(6, 4.5))
     samples = np.array(TRADE_SAMPLES, dtype=float)
+    variance = errors[0] ** 2 * samples[0]  # sigma^2, from the fewest samples
     axes.loglog(samples, errors, "o-", label="CMCIntegrator, measured")
-    axes.loglog(samples, errors[0] * np.sqrt(samples[0] / samples), "--",
+    axes.loglog(samples, np.sqrt(variance / samples), "--",
                 label="slope -1/2 (error ~ 1/sqrt(N))")
+    axes.loglog(samples, np.sqrt(variance / samples + variance / reference_samples), ":",
+                label=f"the same, against a reference of {reference_samples}")
     axes.set_xlabel("N, samples per hit")
     axes.set_ylabel("RMSE against the reference")
     axes.set_title("Classic Monte Carlo: error against samples")

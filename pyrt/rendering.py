@@ -130,8 +130,8 @@ def rendered_blocks(integrator, workers, sampling, progress):
             with tqdm(total=rows.pixels(0, height, width), unit="px", unit_scale=True,
                       disable=not progress, mininterval=0.5,
                       desc=type(integrator).__name__ + rendering.description) as bar, \
-                    contextlib.closing(render_blocks(integrator, height, rows, rendering.workers,
-                                                     rendering.seconds)) as blocks:
+                    contextlib.closing(render_blocks(integrator, height, rows,
+                                                     rendering.workers)) as blocks:
                 for y0, block in blocks:
                     yield y0, rendering.keep(y0, block)
                     bar.update(rows.pixels(y0, y0 + len(block), width))

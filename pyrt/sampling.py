@@ -11,7 +11,6 @@ render reports its estimated error beside the image.
 """
 import json
 import sys
-import time
 from pathlib import Path
 from typing import NamedTuple
 
@@ -59,13 +58,11 @@ class RenderPass(NamedTuple):
     """One pass over the image: its row function (rows(integrator, y), picklable for the
     worker processes), how many processes render it (None: as many as repay starting
     them), keep(y0, block), which takes the rendered block of rows in this process and
-    returns its colours, the words that tell the progress bar which pass it is, and the
-    seconds one process is expected to take for it (None: unknown, to be measured)."""
+    returns its colours, and the words that tell the progress bar which pass it is."""
     rows: object
     workers: object
     keep: object
     description: str = ""
-    seconds: object = None
 
 
 class UniformSampling:
@@ -170,19 +167,16 @@ class AdaptiveSampling(UniformSampling):
         image = integrator.scene.rendered_image
         self.centre = np.zeros(image.shape)
         self.variance = np.zeros(image.shape)
-        start = time.perf_counter()
         yield RenderPass(CourseRows(1, RowStreams(seed, 0)), workers, self._keep_centre,
                          " centre rays")
-        seconds = time.perf_counter() - start
         display = display_image(self.centre, integrator.tonemap)
         self.refined = refined_pixels(display, self.tolerance)
-        count = int(self.refined.sum())
-        if count == 0:
+        if not self.refined.any():
             return
+        # its time is measured on its first rows (pyrt.workers.render_blocks): a refined
+        # pixel's rays cost more than a centre ray each
         yield RenderPass(SampledRows(self.samples, RowStreams(seed, 1), self.refined), workers,
-                         self._keep_refined, f" {self.samples} rays at edges",
-                         # the centre rays' time per ray, for this pass's rays
-                         seconds * count * self.samples / self.refined.size)
+                         self._keep_refined, f" {self.samples} rays at edges")
 
     def _keep_centre(self, y0, block):
         self.centre[y0:y0 + len(block)] = block

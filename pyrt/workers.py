@@ -42,19 +42,23 @@ COMPACT_CLASSES = (Scene, Primitive, BRDF, PointLight, Camera)
 START_METHOD_VARIABLE = "PYRT_START_METHOD"
 
 
-def render_blocks(integrator, height, rows, workers, seconds=None):
+def render_blocks(integrator, height, rows, workers):
     """Yields (first row, block) blocks of the image, each from render_block with the row
     function rows, in any order, rendered by `workers` processes; None: as many as repay
-    starting them for a pass that one process renders in `seconds` (None: unknown, the
-    first row is timed to tell)."""
+    starting them, which the time of the first rows tells."""
     first = 0
-    if workers is None and seconds is None:
-        start = time.perf_counter()
-        yield 0, render_block(integrator, 0, 1, rows)
-        first = 1
-        seconds = (time.perf_counter() - start) * (height - 1)
     if workers is None:
-        workers = worker_count(seconds)
+        width = integrator.scene.camera.width
+        start = time.perf_counter()
+        while True:  # one row after the other, until they tell the time per pixel
+            yield first, render_block(integrator, first, first + 1, rows)
+            first += 1
+            done, elapsed = rows.pixels(0, first, width), time.perf_counter() - start
+            if first == height or done >= width or elapsed > PARALLEL_MIN_SECONDS["fork"]:
+                break
+        # the rest, at the time per pixel of the rows timed (a pass of adaptive sampling
+        # has rows of few pixels and rows of many)
+        workers = worker_count(elapsed / max(done, 1) * rows.pixels(first, height, width))
     blocks = _row_blocks(first, height, workers)
     payload = None
     if workers > 1 and len(blocks) > 1:

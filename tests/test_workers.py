@@ -514,7 +514,7 @@ def test_render_inside_a_pool_worker_renders_in_one_process_and_says_why(tmp_pat
 
 
 class TickingClock:
-    """A perf_counter for pyrt.workers and pyrt.sampling that moves on `tick` seconds at
+    """A perf_counter for pyrt.workers that moves on `tick` seconds at
     every reading: a render takes the time the test says, however loaded the machine is."""
 
     def __init__(self, tick):
@@ -528,7 +528,6 @@ class TickingClock:
 def with_clock_and_two_cores(monkeypatch, tick):
     clock = SimpleNamespace(perf_counter=TickingClock(tick))
     monkeypatch.setattr(pyrt.workers, "time", clock)
-    monkeypatch.setattr(pyrt.sampling, "time", clock)
     monkeypatch.setattr(pyrt.workers, "usable_cores", lambda: 2)
 
 
@@ -536,7 +535,9 @@ def test_short_render_with_all_cores_stays_in_this_process(tmp_path, monkeypatch
     # docs/performance.md: short renders stay in one process, where starting workers
     # would cost more.
     # The first of the 4 rows takes one tick, 1 ms: the other 3 would take 3 ms in one
-    # process, and the refined pixels as long, far less than PARALLEL_MIN_SECONDS.
+    # process; the refined pixels (2 a row) are timed until they fill a row's 5 pixels,
+    # rows 0 to 2, 1 ms each: the last row's 2 would take 1 ms. Both far less than
+    # PARALLEL_MIN_SECONDS.
     with_clock_and_two_cores(monkeypatch, 0.001)
 
     def no_workers(*args):
@@ -553,8 +554,9 @@ def test_long_render_with_all_cores_renders_each_pass_with_a_worker_per_other_co
     # The same render where a tick is 1 s. The centre rays: the first row, timed in this
     # process, takes 1 s, so the other 3 would take 3 s, more than PARALLEL_MIN_SECONDS for
     # any start method: rows 1 to 3, one block each, go to this process and 1 worker (2
-    # cores). The refined pixels: the centre rays took 3 s (4 readings), so the 8 refined
-    # pixels of 20 with 4 rays each would take 3 * 8 * 4 / 20 = 4.8 s: rows 0 to 3 again.
+    # cores). The refined pixels, 2 a row: the first row takes 1 s, longer than
+    # PARALLEL_MIN_SECONDS, so its time tells: 0.5 s a pixel, 3 s for the 6 of rows 1 to 3,
+    # which go to this process and 1 worker again.
     with_clock_and_two_cores(monkeypatch, 1.0)
     passes = []
     with_workers = pyrt.workers._render_with_workers
@@ -567,7 +569,7 @@ def test_long_render_with_all_cores_renders_each_pass_with_a_worker_per_other_co
     image = render_image(StepAt(str(tmp_path / "img"), 2.3), fov90_scene(5, 4),
                          samples_per_pixel=4, adaptive=True)
     assert passes == [("CourseRows", [(1, 2), (2, 3), (3, 4)], 1),
-                      ("SampledRows", [(0, 1), (1, 2), (2, 3), (3, 4)], 1)]
+                      ("SampledRows", [(1, 2), (2, 3), (3, 4)], 1)]
     one_process = render_image(StepAt(str(tmp_path / "one"), 2.3), fov90_scene(5, 4),
                                workers=1, samples_per_pixel=4, adaptive=True)
     assert np.array_equal(image, one_process)
