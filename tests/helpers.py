@@ -6,6 +6,7 @@ tan(fov/2) = 1: pixel (x, y) of a width x height image looks along
 The centre pixel of an image with odd sides looks straight down -z."""
 import math
 import os
+import random as random_module  # the star imports below bind random to random.random
 import subprocess
 import sys
 import time
@@ -22,6 +23,10 @@ from PyRT_Core import *
 from PyRT_Integrators import *
 
 REPO = Path(__file__).resolve().parent.parent
+# The course's own renders (PYRT_SPEC.md), in shared/ beside the repository's folder: beside
+# it as resolved, or beside it as named (a clone reached through a link elsewhere)
+COURSE_RENDERS = [Path(__file__).resolve().parents[2] / "shared" / "course-renders",
+                  Path(os.path.abspath(__file__)).parents[2] / "shared" / "course-renders"]
 APP = REPO / "AppRenderer.py"
 # matplotlib stores a PNG channel v as floor(255 v) / 255: up to one 8-bit step below v
 # (plus float32 rounding when it is read back).
@@ -73,6 +78,21 @@ def make_ray(origin, direction, t_max=HUGEVALUE, t_min=0.0):
     ray = Ray(origin, direction, t_max)
     ray.t_min = t_min
     return ray
+
+
+def course_renders():
+    """The folder of the course's own renders, or None when it is not beside the
+    repository."""
+    return next((folder for folder in COURSE_RENDERS if folder.is_dir()), None)
+
+
+@pytest.fixture(autouse=True)
+def global_generator_kept():
+    """Python's global generator as it was before each test, whatever the test drew (a
+    module that imports this fixture gets it for every test)."""
+    state = random_module.getstate()
+    yield
+    random_module.setstate(state)
 
 
 def render_image(integrator, scene, **render_options):

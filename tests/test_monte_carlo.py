@@ -9,7 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from helpers import TIGHT, as_tuple
+from helpers import TIGHT, as_tuple, global_generator_kept  # noqa: F401
 from PyRT_Common import (Constant, CosineLobe, CosinePDF, EnvironmentMap, Function, PDF,
                          RGBColor, UniformPDF, Vector3D, center_around_normal,
                          euclidean_to_disk, oriented_hemi_dir, rotate_around_y,
@@ -23,14 +23,6 @@ S3 = 1 / math.sqrt(3)
 UNIT_SQUARE = [(u1, u2) for u1 in (0.0, 0.1, 0.25, 0.5, 0.6, 0.75, 0.99, 1 - 2 ** -53)
                for u2 in (0.0, 0.2, 0.5, 0.64, 0.9, 1 - 2 ** -53)]
 COSINE_EXPONENTS = [0, 1, 2, 3, 10, 2.5]
-
-
-@pytest.fixture(autouse=True)
-def global_generator_kept():
-    """Python's global generator as it was before each test, whatever the test drew."""
-    state = random.getstate()
-    yield
-    random.setstate(state)
 
 
 # ------------------------------------------------------------------------------------------
