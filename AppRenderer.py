@@ -124,8 +124,11 @@ INTEGRATORS = {
     "depth": DepthIntegrator,
     "normal": NormalIntegrator,
     "phong": PhongIntegrator,
-    "cmc": CMCIntegrator,  # Practice 2: classic Monte Carlo, n samples per hit
 }
+# Practice 2's classic Monte Carlo, n samples per hit; a PyRT_Integrators.py of a student's
+# own, written before it, may not have it
+if "CMCIntegrator" in globals():
+    INTEGRATORS["cmc"] = CMCIntegrator
 MONTE_CARLO = ("cmc",)  # the integrators that take --samples
 SCENES = {
     "cornell": lambda width, height: cornell_box_scene(0.75, 2, width=width, height=height),
@@ -160,8 +163,8 @@ def make_integrator(name, filename, max_depth=None, experiment_name="", samples=
     is the Monte Carlo integrator's n (default DEFAULT_SAMPLES)."""
     if name == "depth" and max_depth is not None:
         return DepthIntegrator(filename, max_depth, experiment_name)
-    if name == "cmc":
-        return CMCIntegrator(samples or DEFAULT_SAMPLES, filename, experiment_name)
+    if name in MONTE_CARLO:
+        return INTEGRATORS[name](samples or DEFAULT_SAMPLES, filename, experiment_name)
     return INTEGRATORS[name](filename, experiment_name=experiment_name)
 
 
