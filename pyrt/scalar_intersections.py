@@ -1,11 +1,13 @@
 """PyRT_Core's intersection tests on plain floats, for the fast queries of pyrt.acceleration.
 
-Each ``*_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max)`` is the distance at
-which a primitive's ``intersect`` finds its hit along the ray from (ox, oy, oz) with unit
-direction (dx, dy, dz), or None on a miss (the plane tests measure it along that direction
-normalised once more, as PyRT_Core.course_direction does); ``constants`` holds what the test reads of the
+Each ``*_distance(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t_min, t_max)`` is the
+distance at which a primitive's ``intersect`` finds its hit along the ray from (ox, oy, oz)
+with unit direction (dx, dy, dz), or None on a miss; (ux, uy, uz) is that direction
+normalised once more, Normalize(d), along which the plane tests measure t as
+PyRT_Core.course_direction does (the queries normalise a ray's direction once for all the
+objects it is tested against); ``constants`` holds what the test reads of the
 object, as pyrt.acceleration.queries' ``_object_test`` gathers them. Each ``*_hit`` gives the
-hit point and normal (px, py, pz, nx, ny, nz) at that distance. Every one repeats the
+hit point and normal (px, py, pz, nx, ny, nz) at that distance, from the same arguments. Every one repeats the
 operations of the method it stands for, in the same order, so that it rounds the same way
 and gives the same numbers, bit for bit, without making a Vector3D or a HitData.
 """
@@ -15,7 +17,7 @@ from PyRT_Common import INFINITY, SQUARES_HIGH, SQUARES_LOW, euclidean_length, u
 from PyRT_Core import EDGE_TOLERANCE
 
 
-def sphere_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
+def sphere_distance(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t_min, t_max):
     """Sphere.intersect's distance, or None on a miss."""
     cx, cy, cz, r = constants
     fx, fy, fz = (ox - cx) / r, (oy - cy) / r, (oz - cz) / r
@@ -43,7 +45,7 @@ def sphere_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     return None
 
 
-def sphere_hit(constants, ox, oy, oz, dx, dy, dz, t):
+def sphere_hit(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t):
     """The hit point and normal (px, py, pz, nx, ny, nz) of Sphere.intersect at distance t."""
     cx, cy, cz, r = constants
     vx, vy, vz = (ox + dx * t - cx) / r, (oy + dy * t - cy) / r, (oz + dz * t - cz) / r
@@ -54,11 +56,10 @@ def sphere_hit(constants, ox, oy, oz, dx, dy, dz, t):
     return cx + nx * r, cy + ny * r, cz + nz * r, nx, ny, nz
 
 
-def infinite_plane_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
+def infinite_plane_distance(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t_min, t_max):
     """InfinitePlane.intersect's distance, or None on a miss."""
     nx, ny, nz, px, py, pz = constants
-    inverse = 1.0 / sqrt(dx * dx + dy * dy + dz * dz)  # Normalize(d) (d is of unit length)
-    denominator = dx * inverse * nx + dy * inverse * ny + dz * inverse * nz
+    denominator = ux * nx + uy * ny + uz * nz
     if denominator == 0.0:
         return None
     t = (nx * (px - ox) + ny * (py - oy) + nz * (pz - oz)) / denominator
@@ -67,16 +68,15 @@ def infinite_plane_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     return t
 
 
-def infinite_plane_hit(constants, ox, oy, oz, dx, dy, dz, t):
+def infinite_plane_hit(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t):
     """The hit point and normal of InfinitePlane.intersect at distance t."""
     return ox + dx * t, oy + dy * t, oz + dz * t, constants[0], constants[1], constants[2]
 
 
-def parallelogram_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
+def parallelogram_distance(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t_min, t_max):
     """Parallelogram.intersect's distance, or None on a miss."""
     nx, ny, nz, px, py, pz, uax, uay, uaz, ubx, uby, ubz = constants
-    inverse = 1.0 / sqrt(dx * dx + dy * dy + dz * dz)  # Normalize(d) (d is of unit length)
-    denominator = dx * inverse * nx + dy * inverse * ny + dz * inverse * nz
+    denominator = ux * nx + uy * ny + uz * nz
     if denominator == 0.0:
         return None
     t = (nx * (px - ox) + ny * (py - oy) + nz * (pz - oz)) / denominator
@@ -114,7 +114,7 @@ def _single_axis(vector):
     return axes[0] if len(axes) == 1 else None
 
 
-def aligned_wall_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
+def aligned_wall_distance(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t_min, t_max):
     """parallelogram_distance for a ray from the origin o = 0, where the normal n and the
     coordinate vectors u_a and u_b have one non-zero component each, k, i and j: the
     products with the zero components (and with o) are signed zeros, which change no
@@ -122,11 +122,11 @@ def aligned_wall_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     b = (d_j t - p_j) u_b,j, exactly as there. There a product of zero and an infinite
     q = d t - p is NaN and fails its test; here too nothing passes then: an infinite t
     makes d_i t infinite or NaN, an infinite q_i or q_j fails its own test, and for a
-    finite t, q_k is near zero, the hit lying on the plane. The denominator takes d_k of
-    the direction normalised once more, as parallelogram_distance does."""
+    finite t, q_k is near zero, the hit lying on the plane. The denominator takes u_k of
+    the direction normalised once more, u = Normalize(d), as parallelogram_distance does."""
     _, _, _, k, numerator, n_k, i, p_i, a_i, j, p_j, b_j = constants
     d = (dx, dy, dz)
-    denominator = d[k] * (1.0 / sqrt(dx * dx + dy * dy + dz * dz)) * n_k
+    denominator = (ux, uy, uz)[k] * n_k
     if denominator == 0.0:
         return None
     t = numerator / denominator
@@ -139,10 +139,9 @@ def aligned_wall_distance(constants, ox, oy, oz, dx, dy, dz, t_min, t_max):
     return t
 
 
-def parallelogram_hit(constants, ox, oy, oz, dx, dy, dz, t):
+def parallelogram_hit(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t):
     """The hit point and normal of Parallelogram.intersect at distance t."""
     nx, ny, nz = constants[:3]
-    ux, uy, uz = unit_components(dx, dy, dz)  # the direction Parallelogram.intersect uses
     if ux * nx + uy * ny + uz * nz > 0.0:
         nx, ny, nz = nx * -1.0, ny * -1.0, nz * -1.0
     return ox + dx * t, oy + dy * t, oz + dz * t, nx, ny, nz

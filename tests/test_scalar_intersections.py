@@ -29,10 +29,12 @@ lengths = st.floats(0.25, 3.0) | st.floats(-3.0, -0.25)
 def scalar_answer(test, constants, ray):
     """(distance, hit point, normal) of a scalar test for ray, or None on a miss."""
     o, d = ray.o, ray.d
-    t = test(constants, o.x, o.y, o.z, d.x, d.y, d.z, ray.t_min, ray.t_max)
+    u = Normalize(d)  # the direction the plane tests measure t along
+    t = test(constants, o.x, o.y, o.z, d.x, d.y, d.z, u.x, u.y, u.z, ray.t_min, ray.t_max)
     if t is None:
         return None
-    point_and_normal = POINT_AND_NORMAL[test](constants, o.x, o.y, o.z, d.x, d.y, d.z, t)
+    point_and_normal = POINT_AND_NORMAL[test](constants, o.x, o.y, o.z, d.x, d.y, d.z, u.x,
+                                              u.y, u.z, t)
     return t, point_and_normal[:3], point_and_normal[3:]
 
 

@@ -56,16 +56,21 @@ class AcceleratedCMC:
         """CMCIntegrator.compute_color(ray)."""
         d, o = ray.d, ray.o
         dx, dy, dz, ox, oy, oz = d.x, d.y, d.z, o.x, o.y, o.z
-        if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:
+        squares = dx * dx + dy * dy + dz * dz
+        if not UNIT_LOW <= squares <= UNIT_HIGH:
             return self.plain_color(ray)
-        nearest = self.queries.nearest(None, ox, oy, oz, dx, dy, dz, ray.t_min, ray.t_max)
+        inverse = 1.0 / sqrt(squares)  # r = Normalize(d), for the plane tests
+        rx, ry, rz = dx * inverse, dy * inverse, dz * inverse
+        nearest = self.queries.nearest(None, ox, oy, oz, dx, dy, dz, rx, ry, rz, ray.t_min,
+                                       ray.t_max)
         if nearest is None:
             return BLACK if self.env_map is None else self.env_map.getValue(ray.d)
         test, constants, index, t = nearest
         brdf = self.objects[index].get_BRDF()
         if type(brdf) is not Lambertian:
             return self.plain_color(ray)
-        px, py, pz, nx, ny, nz = POINT_AND_NORMAL[test](constants, ox, oy, oz, dx, dy, dz, t)
+        px, py, pz, nx, ny, nz = POINT_AND_NORMAL[test](constants, ox, oy, oz, dx, dy, dz,
+                                                        rx, ry, rz, t)
         kd = brdf.kd
         kr, kg, kb = kd.r, kd.g, kd.b
         # center_around_normal's frame: w = n, v = Normalize(Cross(up, w)), u = Cross(v, w)
@@ -95,9 +100,11 @@ class AcceleratedCMC:
             # scene.closest_hit(Ray(hit_point, wi)), as AcceleratedQueries.nearest answers
             # it (wi, normalised above, is of unit length): only a strictly nearer hit
             # replaces the nearest so far
+            inverse = 1.0 / sqrt(wx * wx + wy * wy + wz * wz)  # Normalize(wi) once more
+            rx, ry, rz = wx * inverse, wy * inverse, wz * inverse
             hit_index, t_max = None, HUGEVALUE
             for test, constants, index in tests:
-                t = test(constants, px, py, pz, wx, wy, wz, EPSILON, t_max)
+                t = test(constants, px, py, pz, wx, wy, wz, rx, ry, rz, EPSILON, t_max)
                 if t is not None and (hit_index is None or t < t_max):
                     hit_index, t_max = index, t
             if hit_index is not None:

@@ -61,16 +61,21 @@ class AcceleratedPhong:
         """PhongIntegrator.compute_color(ray)."""
         d, o = ray.d, ray.o
         dx, dy, dz, ox, oy, oz = d.x, d.y, d.z, o.x, o.y, o.z
-        if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:
+        squares = dx * dx + dy * dy + dz * dz
+        if not UNIT_LOW <= squares <= UNIT_HIGH:
             return self.plain_color(ray)
-        nearest = self.queries.nearest(None, ox, oy, oz, dx, dy, dz, ray.t_min, ray.t_max)
+        inverse = 1.0 / sqrt(squares)  # u = Normalize(d), for the plane tests
+        ux, uy, uz = dx * inverse, dy * inverse, dz * inverse
+        nearest = self.queries.nearest(None, ox, oy, oz, dx, dy, dz, ux, uy, uz, ray.t_min,
+                                       ray.t_max)
         if nearest is None:
             return BLACK
         test, constants, index, t = nearest
         brdf = self.objects[index].get_BRDF()
         if type(brdf) is not Lambertian:
             return self.plain_color(ray)
-        px, py, pz, nx, ny, nz = POINT_AND_NORMAL[test](constants, ox, oy, oz, dx, dy, dz, t)
+        px, py, pz, nx, ny, nz = POINT_AND_NORMAL[test](constants, ox, oy, oz, dx, dy, dz,
+                                                        ux, uy, uz, t)
         kd, ambient = brdf.kd, self.ambient
         kr, kg, kb = kd.r, kd.g, kd.b
         red, green, blue = kr * ambient.r, kg * ambient.g, kb * ambient.b
@@ -96,8 +101,10 @@ class AcceleratedPhong:
             if not 0.0 < distance <= longest:
                 return self.plain_color(ray)
             sdx, sdy, sdz = sdx / distance, sdy / distance, sdz / distance
-            if not UNIT_LOW <= sdx * sdx + sdy * sdy + sdz * sdz <= UNIT_HIGH:
+            squares = sdx * sdx + sdy * sdy + sdz * sdz
+            if not UNIT_LOW <= squares <= UNIT_HIGH:
                 return self.plain_color(ray)
+            sux = None  # Normalize of its direction, made when an object is tested
             # any_hit of the shadow ray, with the entries of its light
             s_max = distance * (1.0 - SHADOW_EPSILON)
             if x0 < sox < x1 and y0 < soy < y1 and z0 < soz < z1:
@@ -105,10 +112,13 @@ class AcceleratedPhong:
             for (test, constants, _, _, cone_x, cone_y, cone_z, cos_limit,
                  side_x, side_y, side_z, side_limit) in entries:
                 if (sdx * cone_x + sdy * cone_y + sdz * cone_z >= cos_limit
-                        and sox * side_x + soy * side_y + soz * side_z <= side_limit
-                        and test(constants, sox, soy, soz, sdx, sdy, sdz, offset,
-                                 s_max) is not None):
-                    break  # in the shadow of this object
+                        and sox * side_x + soy * side_y + soz * side_z <= side_limit):
+                    if sux is None:
+                        inverse = 1.0 / sqrt(squares)
+                        sux, suy, suz = sdx * inverse, sdy * inverse, sdz * inverse
+                    if test(constants, sox, soy, soz, sdx, sdy, sdz, sux, suy, suz, offset,
+                            s_max) is not None:
+                        break  # in the shadow of this object
             else:
                 cos_theta = nx * (tx / r) + ny * (ty / r) + nz * (tz / r)  # get_value(wi, ...)
                 if cos_theta > 0.0:

@@ -1,5 +1,6 @@
 """AcceleratedQueries: a scene's closest_hit and any_hit, equal to Scene's bit for bit, on
 plain floats, each ray testing only the objects it can reach (culling.py)."""
+from math import sqrt
 from typing import Callable, NamedTuple, Optional
 
 from PyRT_Common import INFINITY, HitData, Vector3D, _new
@@ -103,11 +104,14 @@ class AcceleratedQueries:
         """Scene.closest_hit(ray)."""
         d = ray.d
         dx, dy, dz = d.x, d.y, d.z
-        if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:
+        squares = dx * dx + dy * dy + dz * dz
+        if not UNIT_LOW <= squares <= UNIT_HIGH:
             return Scene.closest_hit(self.scene, ray)  # a direction to normalise: rare
+        inverse = 1.0 / sqrt(squares)  # u = Normalize(d), for the plane tests
+        ux, uy, uz = dx * inverse, dy * inverse, dz * inverse
         o = ray.o
         ox, oy, oz = o.x, o.y, o.z
-        nearest = self.nearest(ray, ox, oy, oz, dx, dy, dz, ray.t_min, ray.t_max)
+        nearest = self.nearest(ray, ox, oy, oz, dx, dy, dz, ux, uy, uz, ray.t_min, ray.t_max)
         if nearest is None:
             return HitData()
         test, found, index, t = nearest
@@ -118,14 +122,15 @@ class AcceleratedQueries:
         # the three calls of __init__, which closest_hit would make for nearly every pixel
         point, normal, hit = _new(Vector3D), _new(Vector3D), _new(HitData)
         point.x, point.y, point.z, normal.x, normal.y, normal.z = POINT_AND_NORMAL[test](
-            found, ox, oy, oz, dx, dy, dz, t)
+            found, ox, oy, oz, dx, dy, dz, ux, uy, uz, t)
         hit.has_hit, hit.hit_point, hit.normal, hit.hit_distance = True, point, normal, t
         hit.primitive_index = index
         return hit
 
-    def nearest(self, ray, ox, oy, oz, dx, dy, dz, t_min, t_max):
+    def nearest(self, ray, ox, oy, oz, dx, dy, dz, ux, uy, uz, t_min, t_max):
         """(test, constants, index, t) of the nearest hit of the ray from (ox, oy, oz) along
-        the unit direction (dx, dy, dz) in [t_min, t_max], or None; for an object asked
+        the unit direction (dx, dy, dz), (ux, uy, uz) = Normalize(d), in [t_min, t_max], or
+        None; for an object asked
         through its own intersect, (None, its HitData, index, t). Only a strictly nearer
         hit replaces the nearest so far, as in Scene.closest_hit."""
         from_camera = ox == 0.0 and oy == 0.0 and oz == 0.0 and t_min >= 0.0
@@ -139,7 +144,7 @@ class AcceleratedQueries:
                 if hit.has_hit and (nearest is None or hit.hit_distance < t_max):
                     nearest, t_max = (None, hit, index, hit.hit_distance), hit.hit_distance
                 continue
-            t = test(constants, ox, oy, oz, dx, dy, dz, t_min, t_max)
+            t = test(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t_min, t_max)
             if t is not None and (nearest is None or t < t_max):
                 nearest, t_max = (test, constants, index, t), t
         return nearest
@@ -148,8 +153,10 @@ class AcceleratedQueries:
         """Scene.any_hit(ray)."""
         d = ray.d
         dx, dy, dz = d.x, d.y, d.z
-        if not UNIT_LOW <= dx * dx + dy * dy + dz * dz <= UNIT_HIGH:
+        squares = dx * dx + dy * dy + dz * dz
+        if not UNIT_LOW <= squares <= UNIT_HIGH:
             return Scene.any_hit(self.scene, ray)  # a direction to normalise: rare
+        ux = None  # u = Normalize(d), for the plane tests, made when an object is tested
         o = ray.o
         ox, oy, oz, t_min, t_max = o.x, o.y, o.z, ray.t_min, ray.t_max
         entries = self.everywhere
@@ -175,7 +182,11 @@ class AcceleratedQueries:
                 if test is None:
                     if obj.intersect(ray).has_hit:
                         return True
-                elif test(constants, ox, oy, oz, dx, dy, dz, t_min, t_max) is not None:
+                    continue
+                if ux is None:
+                    inverse = 1.0 / sqrt(squares)
+                    ux, uy, uz = dx * inverse, dy * inverse, dz * inverse
+                if test(constants, ox, oy, oz, dx, dy, dz, ux, uy, uz, t_min, t_max) is not None:
                     return True
         return False
 
