@@ -28,6 +28,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent / "checks"))
 
 import practice1_checks as checks  # noqa: E402  (found through the line above)
+import practice1_render as render  # noqa: E402
 import PyRT_Integrators  # noqa: E402
 from course_kit.arithmetic import with_course_arithmetic  # noqa: E402
 from PyRT_Common import BLACK, EPSILON, Length, Ray, RGBColor  # noqa: E402
@@ -138,8 +139,8 @@ def mistake_integrator(mistake, filename):
 # ------------------------------------------------------------------------------------------
 def framework_image(name, folder):
     """The expected image of IMAGES[name]: the framework's integrator and its render()."""
-    integrator = checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
-    scene = checks.SCENES[checks.IMAGES[name].scene]()
+    integrator = render.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
+    scene = render.scene_of(name, render.PUBLISHED)
     integrator.add_scene(scene)
     integrator.render(workers=1, progress=False)
     return np.array(scene.rendered_image, dtype=float)
@@ -160,27 +161,27 @@ def course_shadow_rays(scene):
 def students_integrators(name, folder):
     """The integrators of IMAGES[name] as students write them: for Phong one per shadow
     ray of SHADOW_RAYS, else the framework's own."""
-    if checks.IMAGES[name].integrator == "PhongIntegrator":
+    if render.RENDERED[name][1] == "PhongIntegrator":
         return [PhongVariant(str(Path(folder) / name), blocked=blocked)
                 for blocked in SHADOW_RAYS]
-    return [checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)]
+    return [render.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)]
 
 
 def seams(name, expected, folder):
     """(seam_pixels, seam_colors) of IMAGES[name], as the module docstring says."""
-    info = checks.IMAGES[name]
-    if info.integrator == "LazyIntegrator":
+    integrator_name = render.RENDERED[name][1]
+    if integrator_name == "LazyIntegrator":
         return np.zeros((0, 2), np.int64), np.zeros((0, 0, 3))
 
     def scene():
-        return checks.SCENES[info.scene]()
+        return render.scene_of(name, render.PUBLISHED)
 
-    integrator = checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
-    alternatives = [checks.traced_image(integrator, scene(), offset)
+    integrator = render.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
+    alternatives = [render.traced_image(integrator, scene(), offset)
                     for offset in SEAM_OFFSETS]
-    if info.integrator == "PhongIntegrator":
-        alternatives.append(checks.traced_image(integrator, course_shadow_rays(scene())))
-    alternatives += [checks.traced_image(student, with_course_arithmetic(scene()))
+    if integrator_name == "PhongIntegrator":
+        alternatives.append(render.traced_image(integrator, course_shadow_rays(scene())))
+    alternatives += [render.traced_image(student, with_course_arithmetic(scene()))
                      for student in students_integrators(name, folder)]
     stack = np.stack(alternatives)  # (K, height, width, 3)
     differs = np.zeros(expected.shape[:2], bool)
@@ -194,20 +195,20 @@ def expected_arrays():
     """Every array of course_kit/checks/expected/practice1.npz, by key."""
     arrays = {}
     with tempfile.TemporaryDirectory() as folder:
-        for name, info in checks.IMAGES.items():
+        for name in checks.IMAGES:
             expected = arrays[name] = framework_image(name, folder)
             arrays[f"{name}.seam_pixels"], arrays[f"{name}.seam_colors"] = seams(
                 name, expected, folder)
-            if info.integrator == "LazyIntegrator":
+            if name == "lazy":
                 continue
-            integrator = checks.make_integrator(name, str(Path(folder) / name),
+            integrator = render.make_integrator(name, str(Path(folder) / name),
                                                 PyRT_Integrators)
-            arrays[f"{name}.mistake.corner_rays"] = checks.traced_image(
-                integrator, checks.SCENES[info.scene](), CORNER)
+            arrays[f"{name}.mistake.corner_rays"] = render.traced_image(
+                integrator, render.scene_of(name, render.PUBLISHED), CORNER)
             for mistake in checks.RENDERED_MISTAKES.get(name, ()):
-                arrays[f"{name}.mistake.{mistake}"] = checks.traced_image(
+                arrays[f"{name}.mistake.{mistake}"] = render.traced_image(
                     mistake_integrator(mistake, str(Path(folder) / mistake)),
-                    checks.SCENES[info.scene]())
+                    render.scene_of(name, render.PUBLISHED))
     return arrays
 
 
@@ -228,8 +229,8 @@ def npz_bytes(arrays):
 def framework_story(name, x, y):
     """The finished framework's history of pixel (x, y) of IMAGES[name] (pyrt/explain.py),
     as text: what the feedback page shows beside a student's story of the same pixel."""
-    integrator = checks.make_integrator(name, "unused", PyRT_Integrators)
-    integrator.add_scene(checks.SCENES[checks.IMAGES[name].scene]())
+    integrator = render.make_integrator(name, "unused", PyRT_Integrators)
+    integrator.add_scene(render.scene_of(name, render.PUBLISHED))
     return str(integrator.explain_pixel(x, y))
 
 

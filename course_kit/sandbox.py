@@ -88,10 +88,12 @@ def bubblewrap_command(cell, root=None):
     python = sorted({path for path in python if not any(
         Path(path).is_relative_to(other) for other in python + list(SYSTEM_FOLDERS)
         if other != path)})  # each once: those in a folder already shown go with it
-    server = str(Path(course_kit.isolation.__file__).resolve())
+    # of the kit, only the server and the code its steps run besides the student's
+    kit = [str(Path(course_kit.isolation.__file__).resolve())] + [
+        str(path) for path in course_kit.isolation.STEP_MODULES]
     made = {"/", "/tmp", *SYSTEM_FOLDERS}
-    for path, option in [(folder, "--ro-bind") for folder in python] + [
-            (server, "--ro-bind"), (str(cell), "--bind")]:
+    for path, option in [(folder, "--ro-bind") for folder in python + kit] + [
+            (str(cell), "--bind")]:
         # the folders on the way, which bwrap would make readable by root only
         for parent in reversed(Path(path).parents):
             if str(parent) not in made:

@@ -28,6 +28,7 @@ from PyRT_Common import Vector3D
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice1_checks as checks  # noqa: E402  (found through the line above)
+import practice1_render as render  # noqa: E402
 
 HANDOUT_FILES = [
     ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
@@ -36,7 +37,8 @@ HANDOUT_FILES = [
     "pytest.ini", "references/figure1_phong.png", "references/figure2_lazy.png",
     "references/figure3_intersection.png", "references/figure4_depth.png",
     "references/figure4_normal.png", "references/figure5_phong.png", "requirements.txt",
-    "tests/expected/practice1.npz", "tests/practice1_checks.py", "tests/test_practice1.py"]
+    "tests/expected/practice1.npz", "tests/practice1_checks.py", "tests/practice1_render.py",
+    "tests/test_practice1.py"]
 CHECK_TESTS = {  # the students' tests, by the step in their names
     "test_assignment_1_1_lazy_image": "1.1", "test_assignment_1_2_any_hit": "1.2",
     "test_assignment_1_2_render_loop_rays": "1.2",
@@ -279,12 +281,12 @@ def test_the_expected_data_is_what_the_framework_renders():
 def test_the_checks_scenes_are_apprenderers():
     import AppRenderer
     from PyRT_Integrators import PhongIntegrator
-    for ours, theirs in ((checks.sphere_scene(), AppRenderer.sphere_test_scene(
-            width=checks.SIZE, height=checks.SIZE)), (checks.cornell_box(),
+    for ours, theirs in ((render.sphere_scene(), AppRenderer.sphere_test_scene(
+            width=render.SIZE, height=render.SIZE)), (render.cornell_box(),
                                                       AppRenderer.cornell_box_scene(
-                                                          0.75, 2, width=checks.SIZE,
-                                                          height=checks.SIZE))):
-        images = [checks.traced_image(PhongIntegrator("unused"), scene)
+                                                          0.75, 2, width=render.SIZE,
+                                                          height=render.SIZE))):
+        images = [render.traced_image(PhongIntegrator("unused"), scene)
                   for scene in (ours, theirs)]
         assert np.array_equal(*images)
         assert [type(obj) for obj in ours.object_list] == [type(obj)
@@ -388,9 +390,9 @@ def test_the_seams_of_the_cornell_box_take_the_background_the_courses_arithmetic
 
 
 def test_the_ray_probe_reads_the_numpy_arrays_of_the_2021_22_ray():
-    assert checks.components(np.array([0, 0, 0])) == (0.0, 0.0, 0.0)
-    assert checks.components(np.array([0.25, -1.0, 2.0])) == (0.25, -1.0, 2.0)
-    assert checks.components(Vector3D(1, 2, 3)) == (1.0, 2.0, 3.0)
+    assert render.components(np.array([0, 0, 0])) == (0.0, 0.0, 0.0)
+    assert render.components(np.array([0.25, -1.0, 2.0])) == (0.25, -1.0, 2.0)
+    assert render.components(Vector3D(1, 2, 3)) == (1.0, 2.0, 3.0)
 
 
 def test_a_passed_check_with_a_note_shows_it_without_marking_anything_wrong():
@@ -628,7 +630,7 @@ def test_the_feedback_page_shows_each_step_its_verdict_and_the_images(graded):
                                "images/1.3_depth_difference.png"]
     for source in page.images:
         image = plt.imread(results / "unclamped_depth_and_no_ambient" / source)
-        assert image.shape[:2] == (checks.SIZE * checks.PNG_SCALE,) * 2
+        assert image.shape[:2] == (render.SIZE * checks.PNG_SCALE,) * 2
     assert "likely mistake: the depth is not clamped at 0" in "".join(page.text)
 
 
@@ -694,7 +696,8 @@ def run_step_after(prelude, handout, tmp_path, wall_seconds, core=None):
     try:
         limits = {"cpu_seconds": 60, "wall_seconds": wall_seconds, "memory_mib": 2048,
                   "output_kib": 256}
-        return server.run_step(work, tmp_path, "1.1", limits)
+        task = {"kind": "collect", "names": ["lazy"], "draw": render.PUBLISHED}
+        return server.run_step(work, tmp_path, "1.1", task, limits)
     finally:
         server.close()
 

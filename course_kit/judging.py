@@ -1,0 +1,115 @@
+"""The grader's judge: a step's checks decided in the grader's own process, which never
+imports a student's code, from the data the step's process hands back.
+
+For each step the step server (course_kit/isolation.py) runs the student's code in a
+process of its own, confined as course_kit/sandbox.py says, on the inputs of a Trial (the
+size and place of the scenes, the any_hit cases); that process renders and answers, and
+hands back data only (course_kit/handback.py). Here the data is read with its limits and
+judged against the trial's expected data by the rules of the students' own checks
+(practice1_checks.py, run here on data alone). The process that ran the student's code
+decides nothing and never sees the expected data or the answers. A wrong image's first
+wrong pixel gets its story from a second, fresh run of the student's code (the "story"
+task), beside the finished framework's story, which the trial tells.
+"""
+import shutil
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Mapping, Tuple
+
+import course_kit.handback
+import course_kit.handout
+
+sys.path.insert(0, str(course_kit.handout.CHECKS))
+import practice1_checks as checks  # noqa: E402  (found through the line above)
+import practice1_render as render  # noqa: E402
+
+
+@dataclass(frozen=True)
+class Trial:
+    """What a grading asks of the student's code and what it expects: the Draw handed to
+    the step's process, any_hit's cases with their right answers, the expected data of
+    the draw (practice1_checks' form: a mapping), and the finished framework's story of a
+    pixel, story(name, x, y)."""
+
+    draw: render.Draw
+    cases: Tuple
+    data: Mapping
+    story: Callable
+
+
+def published_trial():
+    """The Trial of the handout's own checks: the published draw and expected data."""
+    def story(name, x, y):
+        import course_kit.references  # loads the framework: only a story needs it
+        return course_kit.references.framework_story(name, x, y)
+
+    return Trial(render.PUBLISHED, render.PUBLISHED_CASES, checks.expected_data(), story)
+
+
+def rendered_from(name, arrays, texts):
+    """A practice1_render.Rendered made of what course_kit.handback read."""
+    return render.Rendered(name, arrays, texts["error"], texts["first_color"],
+                           texts["not_bool"])
+
+
+def judge_step(step, trial, server, workdir, scratch, limits):
+    """(the step's checks as dicts, the refusals, the limits not set, why there is no
+    result or "", what the step printed) of step on the working copy workdir."""
+    names = checks.STEPS[step]
+    asked = names + (("probe",) if step == "1.1" else ())  # a black Lazy image needs it
+    task = {"kind": "collect", "names": list(asked), "draw": trial.draw}
+    path, why, output = server.run_step(workdir, scratch, step, task, limits)
+    if path is None:
+        return [], [], [], why, output
+    try:
+        rendered, meta = course_kit.handback.read(path, asked, trial.draw, rendered_from)
+    except course_kit.handback.Malformed as error:
+        return [], [], [], f"refused: the step's process {error}", output
+    by_name = {one.name: one for one in rendered}
+    folder = Path(scratch) / "checks"
+    results = []
+    for name in names:
+        check = checks.judge_rendered(by_name[name], trial.data, trial.cases,
+                                      folder / name, by_name.get("probe"))
+        framework_story = ""
+        if check.story_pixel:
+            framework_story = _tell_story(check, step, trial, server, workdir, scratch,
+                                          limits)
+        results.append(dict(_as_dict(check, step, Path(scratch) / "images"),
+                            framework_story=framework_story))
+    return results, meta.get("refused", []), meta.get("limits_not_set", []), "", output
+
+
+def _tell_story(check, step, trial, server, workdir, scratch, limits):
+    """Sets check.story from a fresh run of the student's code (nothing when that run
+    fails: a story never changes a verdict); returns the finished framework's story of
+    the same pixel, or "" when the student's is not told."""
+    task = {"kind": "story", "name": check.name, "pixel": list(check.story_pixel),
+            "draw": trial.draw}
+    path, _, _ = server.run_step(workdir, scratch, f"{step}_{check.name}_story", task,
+                                 limits)
+    history = ""
+    if path is not None:
+        try:
+            _, meta = course_kit.handback.read(path, (), trial.draw, rendered_from)
+            history = meta.get("story", "")
+        except course_kit.handback.Malformed:
+            pass
+    check.story = checks.story(check, trial.data[check.name], history)
+    return trial.story(check.name, *check.story_pixel) if check.story else ""
+
+
+def _as_dict(check, step, images):
+    """check as the grader's record keeps it, its PNGs copied into images/ as
+    <step>_<check>_<kind>.png."""
+    kept = {}
+    for kind, path in check.images.items():
+        target = images / f"{step}_{check.name}_{kind}.png"
+        images.mkdir(exist_ok=True)
+        shutil.copyfile(path, target)
+        kept[kind] = f"images/{target.name}"
+    return {"name": check.name, "title": check.title, "passed": check.passed,
+            "reason": check.reason, "note": check.note, "message": check.message,
+            "error": check.error, "images": kept, "story": check.story,
+            "story_pixel": list(check.story_pixel)}
