@@ -17,6 +17,7 @@ import hashlib
 import json
 import os
 import queue
+import random
 import shutil
 import sys
 import tempfile
@@ -319,6 +320,7 @@ def grade_submission(submission, template, results, config, kit, servers, isolat
                           for name in course_kit.handout.COURSE_MODULES},
                 "problems": submission.problems,
                 "isolation": isolation.mode,
+                "draw": {"size": trial.draw.size, "offset": list(trial.draw.offset)},
                 "steps": steps,
                 "total": sum(step["points"] for step in steps),
                 "max_total": sum(config.points.values()),
@@ -349,18 +351,19 @@ def recorded(results, submission, kit):
 
 
 def grade_folder(submissions_folder, results, config, jobs=None, force=False, progress=True,
-                 isolation=None):
+                 isolation=None, draws=None):
     """Grades every submission of submissions_folder into results (see the module's
     docstring and grade_submissions); returns the records, sorted by submission."""
     return grade_submissions(find_submissions(submissions_folder), results, config, jobs,
-                             force, progress, isolation)
+                             force, progress, isolation, draws)
 
 
 def grade_submissions(submissions, results, config, jobs=None, force=False, progress=True,
-                      isolation=None):
+                      isolation=None, draws=None):
     """Grades the Submissions into results (see the module's docstring), their steps
-    isolated as course_kit.sandbox.choose(isolation) says, which it prints; returns their
-    records, in the order of submissions."""
+    isolated as course_kit.sandbox.choose(isolation) says, which it prints, on inputs
+    drawn now with draws (a random.Random; default: the system's own source, which no
+    submission can foresee); returns their records, in the order of submissions."""
     results = Path(results)
     results.mkdir(parents=True, exist_ok=True)
     isolation = course_kit.sandbox.choose(isolation)
@@ -375,7 +378,6 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
             if record is not None:
                 records[submission.name] = record
     todo = [submission for submission in submissions if submission.name not in records]
-    trial = course_kit.judging.published_trial()
     jobs = min(jobs or os.cpu_count() or 1, len(todo)) or 1
     servers = queue.Queue()
     with tempfile.TemporaryDirectory(prefix="pyrt-handout-") as template:
@@ -385,6 +387,9 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
             for index in range(jobs if todo else 0):
                 servers.put(course_kit.isolation.StepServer(
                     cores[index % len(cores)], course_kit.sandbox.confinement(isolation)))
+            # made while the servers start: the inputs, and what the framework makes of them
+            trial = course_kit.judging.drawn_trial(draws or random.SystemRandom()) if (
+                todo) else None
             # The pool ends before the servers close: a submission still being graded
             # gives its server back first, and one not started yet never waits for one
             with ThreadPoolExecutor(max_workers=jobs) as pool:

@@ -25,6 +25,12 @@ import practice1_checks as checks  # noqa: E402  (found through the line above)
 import practice1_render as render  # noqa: E402
 
 
+# The inputs drawn at grading time: the sizes of the images, and how far the course's
+# scenes may move along each axis (their objects stay in view and keep their order)
+DRAWN_SIZES = tuple(range(32, 49))
+DRAWN_OFFSET = 0.15
+
+
 @dataclass(frozen=True)
 class Trial:
     """What a grading asks of the student's code and what it expects: the Draw handed to
@@ -38,13 +44,33 @@ class Trial:
     story: Callable
 
 
-def published_trial():
-    """The Trial of the handout's own checks: the published draw and expected data."""
-    def story(name, x, y):
-        import course_kit.references  # loads the framework: only a story needs it
-        return course_kit.references.framework_story(name, x, y)
+def drawn_trial(random):
+    """A Trial drawn with random (a random.Random) at grading time: the scenes at a size
+    of DRAWN_SIZES, moved by up to DRAWN_OFFSET along each axis, and any_hit's cases
+    around a sphere at a distance, in a direction, of its own; the expected data made now
+    by the finished framework (course_kit/references.py)."""
+    import course_kit.references  # loads the framework
+    size = random.choice(DRAWN_SIZES)
+    offset = tuple(round(random.uniform(-DRAWN_OFFSET, DRAWN_OFFSET), 6) for _ in range(3))
+    direction = _unit([random.gauss(0.0, 1.0) for _ in range(3)])
+    across = _unit(_cross(direction, _unit([random.gauss(0.0, 1.0) for _ in range(3)])))
+    cases = render.any_hit_cases(round(random.uniform(4.0, 9.0), 3), direction,
+                                 tuple(3.0 * a for a in across))
+    draw = render.Draw(size, offset, tuple(case for case, _ in cases))
 
-    return Trial(render.PUBLISHED, render.PUBLISHED_CASES, checks.expected_data(), story)
+    def story(name, x, y):
+        return course_kit.references.framework_story(name, x, y, draw)
+
+    return Trial(draw, cases, course_kit.references.GradingData(draw), story)
+
+
+def _unit(v):
+    length = sum(a * a for a in v) ** 0.5 or 1.0
+    return tuple(a / length for a in v)
+
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 def rendered_from(name, arrays, texts):

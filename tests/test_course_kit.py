@@ -5,6 +5,7 @@ import hashlib
 import html
 import html.parser
 import json
+import random
 import re
 import shutil
 import sys
@@ -508,7 +509,7 @@ def graded(handout, tmp_path_factory):
     before = digest(folder)
     records = course_kit.grader.grade_folder(folder, results,
                                          course_kit.grader.load_config(config_path), jobs=2,
-                                         progress=False)
+                                         progress=False, draws=random.Random(1))
     return folder, before, results, {record["submission"]: record for record in records}, \
         outside, config_path
 
@@ -617,7 +618,7 @@ class Page(html.parser.HTMLParser):
 
 
 def test_the_feedback_page_shows_each_step_its_verdict_and_the_images(graded):
-    _, _, results, _, _, _ = graded
+    _, _, results, records, _, _ = graded
     page = Page((results / "unclamped_depth_and_no_ambient" / "feedback.html").read_text())
     assert page.headings[0] == ("Practice 1: unclamped_depth_and_no_ambient, 30 of 100.5 "
                                 "points")
@@ -630,7 +631,8 @@ def test_the_feedback_page_shows_each_step_its_verdict_and_the_images(graded):
                                "images/1.3_depth_difference.png"]
     for source in page.images:
         image = plt.imread(results / "unclamped_depth_and_no_ambient" / source)
-        assert image.shape[:2] == (render.SIZE * checks.PNG_SCALE,) * 2
+        size = records["unclamped_depth_and_no_ambient"]["draw"]["size"]
+        assert image.shape[:2] == (size * checks.PNG_SCALE,) * 2
     assert "likely mistake: the depth is not clamped at 0" in "".join(page.text)
 
 

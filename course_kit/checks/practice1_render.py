@@ -208,21 +208,23 @@ def make_integrator(name, filename, integrators):
     return getattr(integrators, integrator)(filename, *arguments)
 
 
-def traced_image(integrator, scene, offset=(0.0, 0.0)):
+def traced_image(integrator, scene, offset=(0.0, 0.0), pixels=None):
     """The image of integrator.compute_color for a ray from the camera through each
     pixel's centre moved by offset = (dx, dy) pixels, traced here, one pixel at a time,
-    instead of by the integrator's render()."""
+    instead of by the integrator's render(); only at pixels ((y, x) pairs, the others
+    black) when given."""
     common = course_modules()[0]
     integrator.add_scene(scene)
     camera = scene.camera
     image = np.zeros((camera.height, camera.width, 3))
     dx, dy = offset
-    for y in range(camera.height):
-        for x in range(camera.width):
-            direction = camera.get_direction(x + dx, y + dy)
-            color = integrator.compute_color(common.Ray(common.Vector3D(0.0, 0.0, 0.0),
-                                                        direction))
-            image[y, x] = (color.r, color.g, color.b)
+    if pixels is None:
+        pixels = [(y, x) for y in range(camera.height) for x in range(camera.width)]
+    for y, x in pixels:
+        direction = camera.get_direction(x + dx, y + dy)
+        color = integrator.compute_color(common.Ray(common.Vector3D(0.0, 0.0, 0.0),
+                                                    direction))
+        image[y, x] = (color.r, color.g, color.b)
     return image
 
 
