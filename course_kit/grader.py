@@ -52,11 +52,12 @@ LIMIT_NAMES = ("cpu_seconds", "wall_seconds", "memory_mib", "output_kib")
 # printed (stdout_visibility); the defaults are what results.json has always said
 GRADESCOPE_DEFAULTS = {"visibility": "visible", "stdout_visibility": "hidden"}
 VISIBILITIES = ("hidden", "visible", "after_due_date", "after_published")
-# PyRT's machinery that gives the answers of steps 1.2 and 1.4 (the fast any_hit and the
-# fused Phong): a working copy has none of it, and the plain code that stands in for it
+# PyRT's machinery that gives the answers of steps 1.2 and 1.4 (the fast any_hit, the
+# fused Phong, the stories' Phong terms): a working copy has none of it, and the plain code that stands in for it
 # runs the student's own (or the framework's own) any_hit and compute_color
 ANSWERING_MACHINERY = ("pyrt/acceleration/accelerated.py", "pyrt/acceleration/queries.py",
-                       "pyrt/acceleration/phong.py", "pyrt/acceleration/culling.py")
+                       "pyrt/acceleration/phong.py", "pyrt/acceleration/culling.py",
+                       "pyrt/course_model.py")
 PLAIN_ACCELERATION = '''"""PyRT's acceleration, left out of the grader's working copy: the plain code runs."""
 import contextlib
 

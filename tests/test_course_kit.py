@@ -653,6 +653,10 @@ def test_a_wrong_phong_image_tells_its_first_wrong_pixel_beside_the_frameworks_s
     framework = page[page.index("The finished framework:"):]
     assert f"Pixel ({x}, {y}) of PhongIntegrator" in framework
     assert "blocked by object 0 (Sphere)" in framework
+    # What a light adds in the course's model is the grader's to tell: the student's
+    # story, told by the handout's pyrt/explain.py, has no model of Phong to say it with
+    assert "in the course's Phong model" in framework
+    assert "in the course's Phong model" not in check["story"]
     result = json.loads((results / "unmapped_normals_and_no_shadows" / course_kit.feedback.GRADESCOPE)
                         .read_text())
     assert check["story"] in result["tests"][3]["output"]  # the step of Phong, 1.4
