@@ -1,0 +1,136 @@
+"""Hostile submissions (tests/course_hostile.py) graded beside the untouched handout and a
+right submission, in every isolation that runs here and through run_autograder: none
+gets a point the untouched handout does not get, and the right one keeps all of its.
+
+In process isolation the student's code runs as the grader's user and can read what the
+grader can: the kinds that read the grader's files (course_hostile.READS_FILES) are
+recorded there as the weakness docs/course-kit.md states, and the verdicts of the others
+still cannot be changed from inside. The matrix runs on one Python of CI's three (it
+grades each kind several times); the other Pythons run the rest of the course kit's
+tests."""
+import json
+import random
+import sys
+
+import pytest
+
+import course_hostile as hostile
+import course_kit.autograder
+import course_kit.grader
+import course_kit.handout
+import course_kit.sandbox
+import course_kit_students as students
+from helpers import REPO
+from test_course_autograder import autograder_root, run_autograder
+
+pytestmark = pytest.mark.skipif(
+    sys.version_info[:2] != (3, 11),
+    reason="the hostile submissions' matrix runs on Python 3.11 only, CI's main Python")
+MODES = [mode for mode, runs in (
+    ("bubblewrap", course_kit.sandbox.bubblewrap_runs),
+    ("unprivileged user", course_kit.sandbox.other_user_runs_python),
+    ("process", lambda: True)) if runs()]
+
+
+@pytest.fixture(scope="module")
+def handout(tmp_path_factory):
+    return course_kit.handout.write_handout(tmp_path_factory.mktemp("hostile") / "handout")
+
+
+@pytest.fixture(scope="module")
+def published():
+    return hostile.published_data()
+
+
+def write_all(folder, handout, published, kit, results):
+    """Every hostile submission, the untouched handout and a right one, in folder."""
+    fields = {"KIT": str(kit), "RESULTS": str(results), "PUBLISHED": published}
+    for kind in hostile.KINDS:
+        hostile.write_hostile(folder / kind, handout, kind, fields)
+    hostile.write_symlinked(folder / "symlinks_to_the_framework", kit)
+    hostile.write_hostile(folder / "untouched", handout, "reads_the_graders_processes",
+                          fields)  # harmless: it only prints
+    students.write_submission(folder / "right", handout, {})
+
+
+@pytest.fixture(scope="module", params=MODES)
+def graded(request, handout, published, tmp_path_factory):
+    """(the mode, {submission: record}) of every submission graded by `grade`."""
+    base = tmp_path_factory.mktemp("hostile_" + request.param.replace(" ", "_"))
+    results = base / "results"
+    write_all(base / "submissions", handout, published, REPO, results)
+    records = course_kit.grader.grade_folder(base / "submissions", results,
+                                             course_kit.grader.load_config(), jobs=2,
+                                             progress=False, isolation=request.param,
+                                             draws=random.Random(36))
+    return request.param, {record["submission"]: record for record in records}, results
+
+
+def points(record):
+    return [step["points"] for step in record["steps"]]
+
+
+@pytest.mark.parametrize("kind", sorted(hostile.KINDS) + ["symlinks_to_the_framework"])
+def test_a_hostile_submission_gets_what_the_untouched_handout_gets(graded, kind):
+    mode, records, _ = graded
+    assert points(records["untouched"]) == [0, 0, 0, 0]
+    assert records["right"]["total"] == 100, [s["reason"] for s in records["right"]["steps"]]
+    if mode == "process" and kind == "finds_the_framework":
+        # The documented weakness: in process isolation the student's code reads the
+        # grader's folder, and the framework it finds there renders right
+        assert records[kind]["total"] == 100
+        return
+    assert points(records[kind]) == points(records["untouched"]), [
+        step["reason"] for step in records[kind]["steps"]]
+
+
+def test_what_the_graders_processes_show_depends_on_the_isolation(graded):
+    mode, records, _ = graded
+    output = records["reads_the_graders_processes"]["steps"][0]["output"]
+    seen = output[output.index("saw of the grader:"):].splitlines()[0]
+    # bubblewrap's own process namespace shows none of the grader's processes; another
+    # user may read their command lines but not their variables, memory or files
+    assert seen == {"bubblewrap": "saw of the grader: []",
+                    "unprivileged user": "saw of the grader: ['command']",
+                    "process": "saw of the grader: ['command', 'environ', 'fd', 'mem']"}[
+        mode]
+
+
+def test_the_graders_results_are_not_rewritten_from_inside(graded):
+    mode, records, results = graded
+    if mode == "process":
+        pytest.skip("process isolation: the student's code runs as the grader's user and "
+                    "may write what it writes (docs/course-kit.md)")
+    for name, record in records.items():
+        written = json.loads((results / name / "results.json").read_text())
+        assert written["score"] == record["total"], name
+        assert [test["score"] for test in written["tests"]] == points(record), name
+
+
+def test_malformed_data_handed_back_is_named(graded):
+    _, records, _ = graded
+    reasons = {kind: records[f"hands_back_{kind}"]["steps"][1]["reason"]
+               for kind in hostile.FILLS}
+    assert reasons["object_arrays"].startswith("refused: the step's process handed back ")
+    assert "which is no plain array" in reasons["object_arrays"]
+    assert "float32" in reasons["float32_images"]
+    assert "of shape" in reasons["wrong_shape"]
+    assert "differ from the expected image" in reasons["nan_images"]
+    assert "printed more than" in reasons["huge_images"]
+
+
+@pytest.fixture(scope="module")
+def autograder_zip(tmp_path_factory):
+    return course_kit.autograder.write_zip(tmp_path_factory.mktemp("hostile_zip") / "ag.zip")
+
+
+@pytest.mark.parametrize("kind", sorted(hostile.KINDS) + ["untouched", "right"])
+def test_through_run_autograder_a_hostile_submission_gets_nothing(
+        kind, autograder_zip, handout, published, tmp_path):
+    root = autograder_root(autograder_zip, tmp_path / "autograder")
+    submissions = tmp_path / "submissions"
+    write_all(submissions, handout, published, root / "source", root / "results")
+    for path in (submissions / kind).iterdir():
+        path.rename(root / "submission" / path.name)
+    results, ran = run_autograder(root)
+    assert results["score"] == (100 if kind == "right" else 0), ran.stdout
