@@ -29,6 +29,7 @@ import practice1_render as render  # noqa: E402
 # scenes may move along each axis (their objects stay in view and keep their order)
 DRAWN_SIZES = tuple(range(32, 49))
 DRAWN_OFFSET = 0.15
+ANY_HIT_SETS = 2  # the published six cases, twice, each around a sphere of its own
 
 
 @dataclass(frozen=True)
@@ -52,11 +53,14 @@ def drawn_trial(random):
     import course_kit.references  # loads the framework
     size = random.choice(DRAWN_SIZES)
     offset = tuple(round(random.uniform(-DRAWN_OFFSET, DRAWN_OFFSET), 6) for _ in range(3))
-    direction = _unit([random.gauss(0.0, 1.0) for _ in range(3)])
-    across = _unit(_cross(direction, _unit([random.gauss(0.0, 1.0) for _ in range(3)])))
-    cases = render.any_hit_cases(round(random.uniform(4.0, 9.0), 3), direction,
-                                 tuple(3.0 * a for a in across))
-    draw = render.Draw(size, offset, tuple(case for case, _ in cases))
+    cases = []
+    for _ in range(ANY_HIT_SETS):
+        direction = _unit([random.gauss(0.0, 1.0) for _ in range(3)])
+        across = _unit(_cross(direction, _unit([random.gauss(0.0, 1.0) for _ in range(3)])))
+        cases += render.any_hit_cases(round(random.uniform(4.0, 9.0), 3), direction,
+                                      tuple(3.0 * a for a in across))
+    random.shuffle(cases)  # no answer follows from a case's place
+    draw = render.Draw(size, offset, tuple(case for _, case, _ in cases))
 
     def story(name, x, y):
         return course_kit.references.framework_story(name, x, y, draw)

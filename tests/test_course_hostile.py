@@ -109,7 +109,7 @@ def test_the_graders_results_are_not_rewritten_from_inside(graded):
 
 def test_malformed_data_handed_back_is_named(graded):
     _, records, _ = graded
-    reasons = {kind: records[f"hands_back_{kind}"]["steps"][1]["reason"]
+    reasons = {kind: records[f"hands_back_{kind}"]["steps"][0]["reason"]
                for kind in hostile.FILLS}
     assert reasons["object_arrays"].startswith("refused: the step's process handed back ")
     assert "which is no plain array" in reasons["object_arrays"]

@@ -440,7 +440,7 @@ VERDICTS = {
     "upside_down": dict.fromkeys(("1.1", "1.2"), "upside down"),
     "transposed": dict.fromkeys(("1.1", "1.2"), "transposed"),
     "corner_rays": dict.fromkeys(("1.1", "1.2"), "top-left corners"),
-    "any_hit_first_object_only": {"1.2": "any_hit is wrong for 1 of 6 rays"},
+    "any_hit_first_object_only": {"1.2": "any_hit is wrong for 2 of 12 rays"},
     "unclamped_depth_and_no_ambient": {"1.3": "not clamped at 0",
                                        "1.4": "the ambient term, kd (x) i_a, is missing"},
     "unmapped_normals_and_no_shadows": {"1.3": "normals are not mapped to [0, 1]",

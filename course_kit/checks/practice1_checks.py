@@ -280,21 +280,21 @@ def judge_rendered(rendered, data, cases, folder, probe=None):
 def _judge_any_hit(check, rendered, cases):
     answers = [int(answer) for answer in rendered.arrays.get("answers", ())]
     if rendered.not_bool is not None:
-        case, _ = cases[max(0, min(len(answers), len(cases)) - 1)]
-        return check.fail(f"{rendered.not_bool} for {case.description}; it must return "
+        description, _, _ = cases[max(0, min(len(answers), len(cases)) - 1)]
+        return check.fail(f"{rendered.not_bool} for {description}; it must return "
                           "True or False")
     if len(answers) != len(cases):
         return check.fail(f"any_hit gave {len(answers)} answers to {len(cases)} rays")
-    wrong = [(case, right) for (case, right), answer in zip(cases, answers)
-             if bool(answer) != right]
+    wrong = [(description, right) for (description, _, right), answer
+             in zip(cases, answers) if bool(answer) != right]
     if not wrong:
         return check.succeed()
     reason = f"any_hit is wrong for {len(wrong)} of {len(cases)} rays"
-    if [case for case, right in cases if right] == [case for case, right in wrong if right]:
+    if [case for case, _, right in cases if right] == [case for case, right in wrong if right]:
         reason += " (it answers False for every ray that hits, as the handout's any_hit does)"
     return check.fail(reason, "\n".join(
-        f"  {case.description}: any_hit answered {not right}, the right answer is {right}"
-        for case, right in wrong))
+        f"  {description}: any_hit answered {not right}, the right answer is {right}"
+        for description, right in wrong))
 
 
 def story(check, expected, history):

@@ -22,11 +22,10 @@ ERROR_TEXT = 4000  # characters of an error's text and traceback kept
 
 
 class AnyHitCase(NamedTuple):
-    """A question to any_hit: what it is, the centres of the unit spheres of its scene,
-    the direction of its ray from the camera, and its t_min and t_max (None: the Ray's
-    own). The right answer is not part of it: the code that answers never sees it."""
+    """A question to any_hit: the centres of the unit spheres of its scene, the direction
+    of its ray from the camera, and its t_min and t_max (None: the Ray's own). What it
+    is and its right answer are not part of it: the code that answers never sees them."""
 
-    description: str
     centres: Tuple[Tuple[float, float, float], ...]
     direction: Tuple[float, float, float]
     t_min: object
@@ -43,7 +42,7 @@ class Draw(NamedTuple):
 
 
 def any_hit_cases(distance, direction, aside):
-    """The any_hit cases, each with its right answer, around a unit sphere at `distance`
+    """The any_hit cases, each (what it is, the AnyHitCase, the right answer), around a unit sphere at `distance`
     from the camera along the unit `direction`, and a second sphere moved by the vector
     `aside` (of length 3, at right angles to direction), which the ray along direction
     misses."""
@@ -52,18 +51,18 @@ def any_hit_cases(distance, direction, aside):
     away = tuple(-d for d in direction)
     near, far = distance - 1.0, distance + 1.0
     return (
-        (AnyHitCase(f"a ray from the camera straight at a sphere {near:.3g} to {far:.3g} "
-                   "away", (centre,), direction, None, None), True),
-        (AnyHitCase("a ray pointing away from every object", (centre,), away, None, None),
+        (f"a ray from the camera straight at a sphere {near:.3g} to {far:.3g} away",
+         AnyHitCase((centre,), direction, None, None), True),
+        ("a ray pointing away from every object", AnyHitCase((centre,), away, None, None),
          False),
-        (AnyHitCase(f"a ray towards the sphere with t_max {near - 1:.3g}, ending before "
-                    "it", (centre,), direction, None, near - 1.0), False),
-        (AnyHitCase(f"a ray towards the sphere with t_min {far + 1:.3g}, starting beyond "
-                    "it", (centre,), direction, far + 1.0, None), False),
-        (AnyHitCase(f"a ray towards the sphere with t_min {distance:.3g}, which meets its "
-                    f"far side at {far:.3g}", (centre,), direction, distance, None), True),
-        (AnyHitCase("a ray that misses the first object of object_list and hits the "
-                    "second", (beside, centre), direction, None, None), True),
+        (f"a ray towards the sphere with t_max {near - 1:.3g}, ending before it",
+         AnyHitCase((centre,), direction, None, near - 1.0), False),
+        (f"a ray towards the sphere with t_min {far + 1:.3g}, starting beyond it",
+         AnyHitCase((centre,), direction, far + 1.0, None), False),
+        (f"a ray towards the sphere with t_min {distance:.3g}, which meets its far side "
+         f"at {far:.3g}", AnyHitCase((centre,), direction, distance, None), True),
+        ("a ray that misses the first object of object_list and hits the second",
+         AnyHitCase((beside, centre), direction, None, None), True),
     )
 
 
@@ -71,15 +70,16 @@ def draw_from_json(value):
     """The Draw that json.loads gives back as lists (json.dumps writes a Draw as lists)."""
     size, offset, cases = value
     return Draw(int(size), tuple(float(v) for v in offset), tuple(
-        AnyHitCase(str(description), tuple(tuple(float(v) for v in c) for c in centres),
+        AnyHitCase(tuple(tuple(float(v) for v in c) for c in centres),
                    tuple(float(v) for v in direction), t_min, t_max)
-        for description, centres, direction, t_min, t_max in cases))
+        for centres, direction, t_min, t_max in cases))
 
 
 # The published checks' inputs (the expected images in tests/expected/), with any_hit's
 # right answers
-PUBLISHED_CASES = any_hit_cases(5.0, (0.0, 0.0, -1.0), (3.0, 0.0, 0.0))
-PUBLISHED = Draw(SIZE, (0.0, 0.0, 0.0), tuple(case for case, _ in PUBLISHED_CASES))
+PUBLISHED_CASES = (any_hit_cases(5.0, (0.0, 0.0, -1.0), (3.0, 0.0, 0.0))
+                   + any_hit_cases(7.0, (0.6, 0.0, -0.8), (0.0, 3.0, 0.0)))
+PUBLISHED = Draw(SIZE, (0.0, 0.0, 0.0), tuple(case for _, case, _ in PUBLISHED_CASES))
 
 
 # ------------------------------------------------------------------------------------------
