@@ -371,6 +371,13 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
     print(f"Isolation of each step: {isolation.describe()}", flush=True)
     if isolation.mode == "unprivileged user":
         results.chmod(0o700)  # the steps' users may read what all may read
+        # checked, not assumed: the finished framework, the expected data, the results
+        # and the submissions must be out of a step's reach
+        repo = course_kit.handout.REPO
+        course_kit.sandbox.check_unreadable(
+            [repo / name for name in course_kit.handout.COURSE_MODULES]
+            + [course_kit.handout.EXPECTED, results]
+            + sorted({submission.path.parent for submission in submissions}))
     kit = kit_fingerprint(config) + isolation.mode
     records = {}
     if not force:

@@ -158,6 +158,27 @@ def choose(requested=None):
     return Isolation("process", why)
 
 
+def readable_by_steps(paths):
+    """Those of paths (files, or folders to look into) that a step's user could read, as
+    root finds by asking the system as that user (the shell's test, which any user may
+    run): what the unprivileged user's isolation must not leave readable."""
+    probe = 'for p; do if [ -r "$p" ] || { [ -d "$p" ] && [ -x "$p" ]; }; then echo "$p"; fi; done'
+    ran = subprocess.run(["/bin/sh", "-c", probe, "sh", *map(str, paths)],
+                         user=FIRST_USER, group=FIRST_USER, extra_groups=[], cwd="/",
+                         capture_output=True, text=True, timeout=PROBE_SECONDS)
+    return ran.stdout.splitlines()
+
+
+def check_unreadable(paths):
+    """Raises IsolationUnavailable naming the first of paths that a step's user could
+    read (see readable_by_steps)."""
+    readable = readable_by_steps(paths)
+    if readable:
+        raise IsolationUnavailable(
+            f"the isolation unprivileged user cannot keep {readable[0]} from the students' "
+            "code: make the grader's folders readable by their owner only (chmod 700)")
+
+
 def _tasks_of(uid):
     """The number of processes and threads of the user uid, from /proc."""
     count = 0

@@ -13,6 +13,7 @@ import course_kit.autograder
 import course_kit.feedback
 import course_kit.grader
 import course_kit.handout
+import course_kit.sandbox
 import course_kit_students as students
 from helpers import REPO, SUBPROCESS_TIMEOUT, headless_env, run_python
 
@@ -206,3 +207,21 @@ def test_the_gradescope_table_sets_the_visibilities_of_results_json(tmp_path):
         course_kit.grader.load_config(path)
     assert str(error.value) == (f"{path}: [gradescope] may give only visibility, "
                                 "stdout_visibility")
+
+
+def test_run_autograder_refuses_process_isolation_unless_it_is_asked_for(
+        autograder_zip, handout, tmp_path, monkeypatch):
+    # Where neither bubblewrap nor an unprivileged user can run, the student's code would
+    # run as the grader's user, which keeps no secret from it
+    monkeypatch.setattr(course_kit.sandbox, "choose", lambda requested=None: (
+        course_kit.sandbox.Isolation("process", "asked for" if requested else
+                                     "no bubblewrap; no unprivileged user")))
+    root = autograder_root(autograder_zip, tmp_path)
+    for name in course_kit.handout.COURSE_MODULES:
+        shutil.copyfile(REPO / name, root / "submission" / name)
+    refused = course_kit.autograder.run(root)
+    assert refused["score"] == 0 and refused["tests"] == []
+    assert refused["output"].startswith("The autograder failed, and your course staff can "
+                                        "see why: IsolationUnavailable: neither bubblewrap "
+                                        "nor an unprivileged user can run here")
+    assert course_kit.autograder.run(root, isolation="process")["score"] == 100
