@@ -99,12 +99,12 @@ SHADOW_RAYS = (blocked_beyond_t_min, blocked_from_lifted_start,
 class PhongVariant(PyRT_Integrators.PhongIntegrator):
     """Phong as the assignment describes it, written the way a student writes it (a shadow
     ray per light, one of SHADOW_RAYS), with parts that can be left out: the ambient
-    term, the shadows, the division by r^2."""
+    term, the shadows; and a falloff of 1/r^falloff, of which the course's is 2."""
 
-    def __init__(self, filename_, ambient=True, shadows=True, inverse_square=True,
+    def __init__(self, filename_, ambient=True, shadows=True, falloff=2,
                  blocked=blocked_beyond_t_min):
         super().__init__(filename_)
-        self.ambient, self.shadows, self.inverse_square = ambient, shadows, inverse_square
+        self.ambient, self.shadows, self.falloff = ambient, shadows, falloff
         self.blocked = blocked
 
     def compute_color(self, ray):
@@ -121,8 +121,9 @@ class PhongVariant(PyRT_Integrators.PhongIntegrator):
             if self.shadows and self.blocked(scene, hit, wi, r):
                 continue
             f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
-            color = color + light.intensity.multiply(f) / (r * r if self.inverse_square
-                                                           else 1.0)
+            # r * r, as students and the framework write it, to the last bit
+            color = color + light.intensity.multiply(f) / (
+                r * r if self.falloff == 2 else r ** self.falloff)
         return color
 
 
@@ -133,7 +134,8 @@ def mistake_integrator(mistake, filename):
         "unmapped_normals": lambda: UnmappedNormals(filename),
         "no_ambient": lambda: PhongVariant(filename, ambient=False),
         "no_shadows": lambda: PhongVariant(filename, shadows=False),
-        "no_inverse_square": lambda: PhongVariant(filename, inverse_square=False),
+        "no_inverse_square": lambda: PhongVariant(filename, falloff=0),
+        "inverse_distance": lambda: PhongVariant(filename, falloff=1),
     }[mistake]()
 
 

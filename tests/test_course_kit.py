@@ -338,6 +338,15 @@ def test_an_image_of_a_known_mistake_is_named():
     assert checks.likely_mistake(np.zeros((40, 40, 3)), "intersection", data) == (
         checks.BLACK_HINTS["intersection"])
     assert checks.likely_mistake(data["depth"] * 0.5, "depth", data) is None
+    # A depth left unclamped is named by its shape, whatever the grey of a miss: right
+    # where the expected grey is above 0, below 0 wherever it differs
+    for miss in (-np.inf, -199999.0):
+        unclamped = data["depth.mistake.unclamped_depth"].copy()
+        unclamped[np.all(data["depth"] == 0.0, axis=2) & np.all(unclamped == 0.0, axis=2)] = miss
+        assert checks.likely_mistake(unclamped, "depth", data) == (
+            checks.LIKELY["unclamped_depth"]), miss
+    assert checks.likely_mistake(-data["depth"], "depth", data) != (
+        checks.LIKELY["unclamped_depth"])  # wrong where the clamp changes nothing
     probe = data["probe"].copy()
     probe[3, 4] = (-1.0, -1.0, -1.0)  # what RayProbe gives a ray from elsewhere
     assert checks.likely_mistake(probe, "probe", data) == checks.LIKELY["not_from_camera"]
@@ -446,6 +455,8 @@ VERDICTS = {
     "unmapped_normals_and_no_shadows": {"1.3": "normals are not mapped to [0, 1]",
                                         "1.4": "there are no shadows"},
     "no_inverse_square": {"1.4": "not divided by r^2"},
+    "inverse_distance": {"1.4": "divided by r, the distance from the point to the light"},
+    "depth_of_misses_too": {"1.3": "the depth is not clamped at 0"},
     "raises": {"1.2": "raised ZeroDivisionError: float division by zero"},
     "calls_sys_exit": {"1.3": "your code called sys.exit(3)"},
     "calls_os_exit": {"1.3": "the process ended (exit code 7) before the checks were done"},

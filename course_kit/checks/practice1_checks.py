@@ -83,8 +83,8 @@ STEPS = {
 RENDERED_MISTAKES = {
     "depth": ("unclamped_depth",),
     "normal": ("unmapped_normals",),
-    "phong_sphere": ("no_ambient", "no_shadows", "no_inverse_square"),
-    "phong_cornell": ("no_ambient", "no_shadows", "no_inverse_square"),
+    "phong_sphere": ("no_ambient", "no_shadows", "no_inverse_square", "inverse_distance"),
+    "phong_cornell": ("no_ambient", "no_shadows", "no_inverse_square", "inverse_distance"),
 }
 LIKELY = {
     "green": "every pixel is GREEN: render() still paints the handout's GREEN. Assignment "
@@ -105,7 +105,9 @@ LIKELY = {
                    "centre of pixel (x, y)",
     "unclamped_depth": "the depth is not clamped at 0: beyond max_depth the grey "
                        "1 - hit_distance / max_depth is negative, and the formula takes the "
-                       "larger of it and 0",
+                       "larger of it and 0 (for a ray that hits nothing, hit_distance is "
+                       "HUGEVALUE or infinite, so its grey is far below 0 unless clamped "
+                       "or coloured BLACK)",
     "unmapped_normals": "the normals are not mapped to [0, 1]: the colour is the normal "
                         "itself, whose components lie in [-1, 1], where the formula is "
                         "(n + (1, 1, 1)) / 2",
@@ -114,6 +116,8 @@ LIKELY = {
                   "between the point and the light (a shadow ray and scene.any_hit tell)",
     "no_inverse_square": "the light's contribution is not divided by r^2, the squared "
                          "distance from the point to the light",
+    "inverse_distance": "the light's contribution is divided by r, the distance from the "
+                        "point to the light, where the falloff is 1/r^2: divide by r * r",
 }
 BLACK_HINTS = {
     "lazy": "the image is black: LazyIntegrator.compute_color returns BLACK, so in "
@@ -430,6 +434,8 @@ def likely_mistake(image, name, data):
     if name == "probe" and np.any(np.all(image == -1.0, axis=2)):
         return LIKELY["not_from_camera"]
     expected = data[name]
+    if name == "depth" and unclamped_shape(image, expected):
+        return LIKELY["unclamped_depth"]
     candidates = {"upside_down": expected[::-1], "mirrored": expected[:, ::-1],
                   "transposed": expected.transpose(1, 0, 2)}
     if name != "lazy" and "lazy" in data:
@@ -442,6 +448,18 @@ def likely_mistake(image, name, data):
         if (~close(image, candidate)).sum() <= allowed:
             return LIKELY[mistake]
     return None
+
+
+def unclamped_shape(image, expected):
+    """Whether a Depth image has the shape of a depth left unclamped, whatever a miss's
+    hit_distance: right wherever the expected grey is above 0 (where the clamp changes
+    nothing), and below 0 (-inf included) wherever it differs there."""
+    shows = expected.max(axis=2) <= 0.0  # where the clamp decides
+    wrong = ~close(image, expected)
+    if not shows.any() or (wrong & ~shows).any() or not (wrong & shows).any():
+        return False
+    with np.errstate(invalid="ignore"):
+        return bool(np.all(image[wrong & shows] < 0.0))
 
 
 def write_pngs(folder, image, expected, wrong):
