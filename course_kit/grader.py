@@ -3,10 +3,12 @@
 Every entry of SUBMISSIONS (a folder or a .zip) is one submission: the course modules it
 holds (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py, wherever they
 lie in it; the shallowest of each name counts) are copied over a fresh copy of the
-handout, and each assignment step's checks (course_kit/checks/practice1_checks.py, the students'
-own checks) run there in a process of their own (course_kit/isolation.py) with limits of
-time, memory and output, isolated as course_kit/sandbox.py chooses (bubblewrap's sandbox, an
-unprivileged user, or the process alone). The submissions themselves are only read.
+handout without its checks. Each assignment step runs the student's code there, on
+inputs drawn for this grading, in a process of its own (course_kit/isolation.py) with
+limits of time, memory and output, isolated as course_kit/sandbox.py chooses (bubblewrap's
+sandbox, an unprivileged user, or the process alone); that process hands back data only,
+which this process judges (course_kit/judging.py) with the students' own rules
+(course_kit/checks/practice1_checks.py). The submissions themselves are only read.
 
 RESULTS gets grades.csv, and for each submission a folder with feedback.html, results.json
 (Gradescope's format), grading.json (the grader's record) and the images of the checks
