@@ -37,6 +37,7 @@ else:  # tomllib came with Python 3.11; tomli is the same reader, for Python 3.1
     import tomli as tomllib
 
 import course_kit.feedback
+import course_kit.handback
 import course_kit.handout
 import course_kit.isolation
 import course_kit.judging
@@ -288,13 +289,13 @@ def grade_steps(submission, template, scratch, config, server, trial):
 # ------------------------------------------------------------------------------------------
 def kit_fingerprint(config):
     """What else decides a grade besides the submission: the handout with its checks and
-    expected images, the step's process and the settings."""
+    expected images, the step's process, the judge and the settings."""
     sha = hashlib.sha256()
     for name, content in course_kit.handout.handout_files().items():
         sha.update(name.encode() + b"\0" + content + b"\0")
     machinery = [course_kit.handout.REPO / path for path in framework_machinery()]
-    for path in machinery + [Path(course_kit.isolation.__file__),
-                             Path(course_kit.sandbox.__file__)]:
+    kit = [course_kit.isolation, course_kit.sandbox, course_kit.handback, course_kit.judging]
+    for path in machinery + [Path(module.__file__) for module in kit]:
         sha.update(path.read_bytes())
     sha.update(config.text.encode())
     return sha.hexdigest()
