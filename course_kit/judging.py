@@ -27,7 +27,9 @@ import practice1_render as render  # noqa: E402
 
 # The inputs drawn at grading time: the sizes of the images, and how far the course's
 # scenes may move along each axis (their objects stay in view and keep their order)
-DRAWN_SIZES = tuple(range(32, 49))
+# never the published size: the Lazy image and the rays of render() depend on the size
+# alone, so at the published size the published arrays would be theirs
+DRAWN_SIZES = tuple(size for size in range(32, 49) if size != render.SIZE)
 DRAWN_OFFSET = 0.15
 ANY_HIT_SETS = 2  # the published six cases, twice, each around a sphere of its own
 
@@ -45,12 +47,11 @@ class Trial:
     story: Callable
 
 
-def drawn_trial(random):
-    """A Trial drawn with random (a random.Random) at grading time: the scenes at a size
-    of DRAWN_SIZES, moved by up to DRAWN_OFFSET along each axis, and any_hit's cases
-    around a sphere at a distance, in a direction, of its own; the expected data made now
-    by the finished framework (course_kit/references.py)."""
-    import course_kit.references  # loads the framework
+def draw_inputs(random):
+    """(the Draw, any_hit's cases with their right answers) drawn with random (a
+    random.Random): the scenes at a size of DRAWN_SIZES, moved by up to DRAWN_OFFSET
+    along each axis, and ANY_HIT_SETS sets of any_hit's cases, each around a sphere at a
+    distance and in a direction of its own, shuffled."""
     size = random.choice(DRAWN_SIZES)
     offset = tuple(round(random.uniform(-DRAWN_OFFSET, DRAWN_OFFSET), 6) for _ in range(3))
     cases = []
@@ -60,7 +61,14 @@ def drawn_trial(random):
         cases += render.any_hit_cases(round(random.uniform(4.0, 9.0), 3), direction,
                                       tuple(3.0 * a for a in across))
     random.shuffle(cases)  # no answer follows from a case's place
-    draw = render.Draw(size, offset, tuple(case for _, case, _ in cases))
+    return render.Draw(size, offset, tuple(case for _, case, _ in cases)), tuple(cases)
+
+
+def drawn_trial(random):
+    """A Trial drawn with random (see draw_inputs) at grading time, its expected data made
+    now by the finished framework (course_kit/references.py)."""
+    import course_kit.references  # loads the framework
+    draw, cases = draw_inputs(random)
 
     def story(name, x, y):
         return course_kit.references.framework_story(name, x, y, draw)

@@ -104,7 +104,8 @@ for _pid in os.listdir("/proc"):
         _command = open(f"/proc/{_pid}/cmdline", "rb").read().replace(b"\\0", b" ")
     except OSError:
         continue
-    if b"pytest" in _command or b"course_kit.autograder" in _command:
+    if any(mark in _command for mark in (b"pytest", b"course_kit.autograder",
+                                         b"course_kit grade")):
         _seen.append("command")
         for _what in ("environ", "mem", "fd"):
             try:
@@ -208,15 +209,21 @@ def published_data():
 def write_hostile(folder, handout, kind, fields):
     """A submission in folder: the handout's modules, its PyRT_Integrators.py ending with
     the code of KINDS[kind], its {FIELDS} filled in from fields."""
-    folder = Path(folder)
-    folder.mkdir(parents=True)
-    for name in course_kit.handout.COURSE_MODULES:
-        shutil.copyfile(Path(handout) / name, folder / name)
+    folder = write_untouched(folder, handout)
     code = KINDS[kind]
     for field, value in fields.items():
         code = code.replace("{" + field + "!r}", repr(value))
     integrators = folder / "PyRT_Integrators.py"
     integrators.write_text(integrators.read_text() + "\n" + code)
+    return folder
+
+
+def write_untouched(folder, handout):
+    """The untouched handout's modules, in folder."""
+    folder = Path(folder)
+    folder.mkdir(parents=True)
+    for name in course_kit.handout.COURSE_MODULES:
+        shutil.copyfile(Path(handout) / name, folder / name)
     return folder
 
 

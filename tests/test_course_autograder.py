@@ -43,10 +43,13 @@ def autograder_root(autograder_zip, root):
     return root
 
 
-def run_autograder(root, python=sys.executable):
-    """Runs root/run_autograder from root, with python (default: this one); returns
-    (results.json read, the CompletedProcess)."""
+def run_autograder(root, python=sys.executable, isolation=None):
+    """Runs root/run_autograder from root, with python (default: this one) and the
+    isolation named (default: the strongest that runs); returns (results.json read, the
+    CompletedProcess)."""
     environment = dict(headless_env(), AUTOGRADER_ROOT=str(root), AUTOGRADER_PYTHON=python)
+    if isolation is not None:
+        environment["AUTOGRADER_ISOLATION"] = isolation
     del environment["PYTHONPATH"]  # the grader runs from source/, not from the repository
     ran = subprocess.run([str(root / "run_autograder")], cwd=root, env=environment,
                          capture_output=True, text=True, timeout=SUBPROCESS_TIMEOUT)

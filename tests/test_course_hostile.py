@@ -8,9 +8,16 @@ recorded there as the weakness docs/course-kit.md states, and the verdicts of th
 still cannot be changed from inside. The matrix runs on one Python of CI's three (it
 grades each kind several times); the other Pythons run the rest of the course kit's
 tests."""
+import hashlib
 import json
+import os
 import random
+import shutil
+import subprocess
 import sys
+import tempfile
+import zipfile
+from pathlib import Path
 
 import pytest
 
@@ -20,16 +27,16 @@ import course_kit.grader
 import course_kit.handout
 import course_kit.sandbox
 import course_kit_students as students
-from helpers import REPO
+from helpers import REPO, SUBPROCESS_TIMEOUT, headless_env
 from test_course_autograder import autograder_root, run_autograder
 
 pytestmark = pytest.mark.skipif(
     sys.version_info[:2] != (3, 11),
     reason="the hostile submissions' matrix runs on Python 3.11 only, CI's main Python")
-MODES = [mode for mode, runs in (
-    ("bubblewrap", course_kit.sandbox.bubblewrap_runs),
-    ("unprivileged user", course_kit.sandbox.other_user_runs_python),
-    ("process", lambda: True)) if runs()]
+MODES = ["bubblewrap", "unprivileged user", "process"]
+SYSTEM_PYTHON = Path("/usr/bin/python3")
+# The virtual environment of the unprivileged user's grading, made once per requirements
+VENVS = Path(tempfile.gettempdir())
 
 
 @pytest.fixture(scope="module")
@@ -48,22 +55,77 @@ def write_all(folder, handout, published, kit, results):
     for kind in hostile.KINDS:
         hostile.write_hostile(folder / kind, handout, kind, fields)
     hostile.write_symlinked(folder / "symlinks_to_the_framework", kit)
-    hostile.write_hostile(folder / "untouched", handout, "reads_the_graders_processes",
-                          fields)  # harmless: it only prints
+    hostile.write_untouched(folder / "untouched", handout)
     students.write_submission(folder / "right", handout, {})
 
 
+def system_venv():
+    """A virtual environment of the system's Python with the grader's requirements, in a
+    folder all may read, as Gradescope's image has it: where the tests' own Python lies
+    in root's home, another user cannot run it. Made once per requirements."""
+    requirements = (REPO / "requirements.txt").read_bytes()
+    venv = VENVS / f"pyrt-system-venv-{hashlib.sha256(requirements).hexdigest()[:12]}"
+    if not (venv / "ready").exists():  # a venv left half made is made again
+        shutil.rmtree(venv, ignore_errors=True)
+        for command in ([str(SYSTEM_PYTHON), "-m", "venv", str(venv)],
+                        [str(venv / "bin" / "python"), "-m", "pip", "install", "-q", "-r",
+                         str(REPO / "requirements.txt")]):
+            subprocess.run(command, check=True, capture_output=True,
+                           timeout=SUBPROCESS_TIMEOUT)
+        venv.chmod(0o755)
+        (venv / "ready").touch()
+    return venv / "bin" / "python"
+
+
+def unprivileged_python():
+    """The Python of system_venv, or a skip where the unprivileged user cannot be."""
+    if not sys.platform.startswith("linux") or os.geteuid() != 0 or not (
+            SYSTEM_PYTHON.exists()):
+        pytest.skip("the unprivileged user's isolation needs root, Linux and a system "
+                    "Python at /usr/bin/python3")
+    return system_venv()
+
+
+def grade_as_unprivileged_user(base, handout, published, autograder_zip):
+    """({submission: record}, the results' folder) of every submission graded by
+    `python -m course_kit grade` run with the system's Python from a copy of the kit
+    readable by root only, as on Gradescope, in the unprivileged user's isolation."""
+    python = unprivileged_python()
+    kit = base / "kit"
+    kit.mkdir(mode=0o700)
+    with zipfile.ZipFile(autograder_zip) as archive:
+        archive.extractall(kit)
+    results = base / "results"
+    write_all(base / "submissions", handout, published, kit, results)
+    environment = {name: value for name, value in headless_env().items()
+                   if name != "PYTHONPATH"}
+    ran = subprocess.run([str(python), "-m", "course_kit", "grade", str(base / "submissions"),
+                          "--out", str(results), "--jobs", "2", "--isolation",
+                          "unprivileged user"], cwd=kit, env=environment,
+                         capture_output=True, text=True, timeout=SUBPROCESS_TIMEOUT)
+    assert ran.returncode == 0, ran.stdout + ran.stderr
+    return {folder.name: json.loads((folder / "grading.json").read_text())
+            for folder in results.iterdir() if (folder / "grading.json").exists()}, results
+
+
 @pytest.fixture(scope="module", params=MODES)
-def graded(request, handout, published, tmp_path_factory):
-    """(the mode, {submission: record}) of every submission graded by `grade`."""
-    base = tmp_path_factory.mktemp("hostile_" + request.param.replace(" ", "_"))
+def graded(request, handout, published, autograder_zip, tmp_path_factory):
+    """(the mode, {submission: record}, the results' folder) of every submission graded
+    by `grade` in the mode."""
+    mode = request.param
+    base = tmp_path_factory.mktemp("hostile_" + mode.replace(" ", "_"))
+    if mode == "unprivileged user":
+        return (mode, *grade_as_unprivileged_user(base, handout, published,
+                                                  autograder_zip))
+    if mode == "bubblewrap" and not course_kit.sandbox.bubblewrap_runs():
+        pytest.skip("bubblewrap cannot run here (Debian and Ubuntu package bubblewrap)")
     results = base / "results"
     write_all(base / "submissions", handout, published, REPO, results)
     records = course_kit.grader.grade_folder(base / "submissions", results,
                                              course_kit.grader.load_config(), jobs=2,
-                                             progress=False, isolation=request.param,
+                                             progress=False, isolation=mode,
                                              draws=random.Random(36))
-    return request.param, {record["submission"]: record for record in records}, results
+    return mode, {record["submission"]: record for record in records}, results
 
 
 def points(record):
@@ -124,13 +186,21 @@ def autograder_zip(tmp_path_factory):
     return course_kit.autograder.write_zip(tmp_path_factory.mktemp("hostile_zip") / "ag.zip")
 
 
+@pytest.mark.parametrize("isolation", [None, "unprivileged user"])
 @pytest.mark.parametrize("kind", sorted(hostile.KINDS) + ["untouched", "right"])
 def test_through_run_autograder_a_hostile_submission_gets_nothing(
-        kind, autograder_zip, handout, published, tmp_path):
+        kind, isolation, autograder_zip, handout, published, tmp_path):
+    # None: the strongest isolation that runs here; the unprivileged user as Gradescope's
+    # containers have it, the system's Python in a virtual environment
+    python = sys.executable
+    if isolation is not None:
+        python = unprivileged_python()
     root = autograder_root(autograder_zip, tmp_path / "autograder")
     submissions = tmp_path / "submissions"
     write_all(submissions, handout, published, root / "source", root / "results")
     for path in (submissions / kind).iterdir():
         path.rename(root / "submission" / path.name)
-    results, ran = run_autograder(root)
+    results, ran = run_autograder(root, python, isolation)
     assert results["score"] == (100 if kind == "right" else 0), ran.stdout
+    assert f"Isolation of each step: {isolation or ''}" in ran.stdout
+

@@ -22,6 +22,7 @@ import course_kit.feedback
 import course_kit.grader
 import course_kit.handout
 import course_kit.isolation
+import course_kit.judging
 import course_kit.references
 import course_kit_students as students
 from helpers import REPO, run_python
@@ -749,6 +750,22 @@ def test_a_config_that_is_not_right_is_refused_with_the_reason(tmp_path, text, m
     with pytest.raises(ValueError) as error:
         course_kit.grader.load_config(path)
     assert str(error.value).startswith(f"{path}: ") and message in str(error.value)
+
+
+def test_the_grader_draws_inputs_the_handout_does_not_publish():
+    # The Lazy image and the rays of render() depend on the size alone: at the published
+    # size, handing back the published arrays would earn Assignment 1.1
+    draws = [course_kit.judging.draw_inputs(random.Random(seed)) for seed in range(200)]
+    sizes = {draw.size for draw, _ in draws}
+    assert render.SIZE not in sizes and len(sizes) > 10
+    assert all(draw.offset != (0.0, 0.0, 0.0) for draw, _ in draws)
+    # any_hit's answers follow neither from a case's place nor from what it is handed
+    patterns = {tuple(answer for _, _, answer in cases) for _, cases in draws}
+    assert len(patterns) > 50
+    for draw, cases in draws[:5]:
+        assert [case for _, case, _ in cases] == list(draw.any_hit)
+        assert all(isinstance(field, (tuple, float, type(None)))
+                   for case in draw.any_hit for field in case)
 
 
 def test_the_default_config_gives_25_points_a_step():
