@@ -348,6 +348,24 @@ def test_an_image_of_a_known_mistake_is_named():
             checks.LIKELY["unclamped_depth"]), miss
     assert checks.likely_mistake(-data["depth"], "depth", data) != (
         checks.LIKELY["unclamped_depth"])  # wrong where the clamp changes nothing
+
+
+@pytest.mark.parametrize("exponent", [1.0, 1.5, 3.0])
+def test_a_lights_falloff_is_fitted_from_the_image_itself(exponent):
+    data = checks.expected_data()
+    image = render.traced_image(course_kit.references.PhongVariant("unused", falloff=exponent),
+                                render.sphere_scene())
+    assert checks.fitted_falloff(image, "phong_sphere", data) == pytest.approx(exponent,
+                                                                              abs=1e-6)
+    named = checks.likely_mistake(image, "phong_sphere", data)
+    assert named == (checks.LIKELY["inverse_distance"] if exponent == 1.0 else
+                     f"the light's contribution falls off as 1/r^{exponent:g}, where r is "
+                     "the distance from the point to the light and the falloff is 1/r^2: "
+                     "divide by r * r")
+    # Right, scaled, or wrong in another way, an image has no falloff of its own
+    for other in (data["phong_sphere"], image * 2.0,
+                  data["phong_sphere.mistake.no_shadows"]):
+        assert checks.fitted_falloff(other, "phong_sphere", data) is None
     probe = data["probe"].copy()
     probe[3, 4] = (-1.0, -1.0, -1.0)  # what RayProbe gives a ray from elsewhere
     assert checks.likely_mistake(probe, "probe", data) == checks.LIKELY["not_from_camera"]

@@ -48,6 +48,12 @@ SEAM_TOLERANCE = 1e-3  # relative: a colour this far from the expected one is an
 MISTAKE_SHARE = 1 / 20  # an image is taken for a known mistake when it differs at most here
 PNG_SCALE = 8  # the PNGs of a check show each pixel as a PNG_SCALE x PNG_SCALE square
 SHOWN_PIXELS = 3  # differing pixels listed in a message
+# A light's falloff is fitted from pixels whose distance to the light differs from 1 by
+# this much in log, at least this many of them, and taken when nine in ten of their
+# exponents lie within FALLOFF_SPREAD
+FALLOFF_MIN_LOG_R = 0.05
+FALLOFF_MIN_PIXELS = 20
+FALLOFF_SPREAD = 0.1
 
 
 # ------------------------------------------------------------------------------------------
@@ -436,6 +442,10 @@ def likely_mistake(image, name, data):
     expected = data[name]
     if name == "depth" and unclamped_shape(image, expected):
         return LIKELY["unclamped_depth"]
+    if name == "phong_sphere":
+        exponent = fitted_falloff(image, name, data)
+        if exponent is not None:
+            return falloff_mistake(exponent)
     candidates = {"upside_down": expected[::-1], "mirrored": expected[:, ::-1],
                   "transposed": expected.transpose(1, 0, 2)}
     if name != "lazy" and "lazy" in data:
@@ -448,6 +458,43 @@ def likely_mistake(image, name, data):
         if (~close(image, candidate)).sum() <= allowed:
             return LIKELY[mistake]
     return None
+
+
+def fitted_falloff(image, name, data):
+    """The exponent p of a Phong image of one light whose light falls off as 1/r^p, fitted
+    from the image itself, when it has that shape and p is not the course's 2; else None.
+    The expected data tells, per pixel, the ambient term A (expected minus the image
+    without ambient), the light's part at r^2 (the image without ambient) and at r^0 (the
+    image without the division, minus A), so r^2 is their ratio; where the light is
+    blocked the image must be the expected one."""
+    expected = data[name]
+    at_r2 = data[f"{name}.mistake.no_ambient"]
+    ambient = expected - at_r2
+    at_r0 = data[f"{name}.mistake.no_inverse_square"] - ambient
+    lit = (at_r2 > ABSOLUTE_TOLERANCE) & (at_r0 > ABSOLUTE_TOLERANCE)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_r = 0.5 * np.log(at_r0 / at_r2)
+        own = image - ambient
+        usable = lit & (own > ABSOLUTE_TOLERANCE) & (np.abs(log_r) > FALLOFF_MIN_LOG_R)
+        if usable.sum() < FALLOFF_MIN_PIXELS or not close(
+                image, expected)[~lit.any(axis=2)].all():
+            return None
+        exponents = np.log(at_r0[usable] / own[usable]) / log_r[usable]
+    low, exponent, high = np.percentile(exponents, (10, 50, 90))
+    if not np.isfinite(exponent) or high - low > FALLOFF_SPREAD or abs(exponent - 2) < (
+            FALLOFF_SPREAD):
+        return None
+    return float(exponent)
+
+
+def falloff_mistake(exponent):
+    """The mistake of a light falling off as 1/r^exponent, in the words of LIKELY."""
+    for mistake, p in (("no_inverse_square", 0), ("inverse_distance", 1)):
+        if abs(exponent - p) < FALLOFF_SPREAD:
+            return LIKELY[mistake]
+    return (f"the light's contribution falls off as 1/r^{exponent:.2g}, where r is the "
+            "distance from the point to the light and the falloff is 1/r^2: divide by "
+            "r * r")
 
 
 def unclamped_shape(image, expected):
