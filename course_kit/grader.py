@@ -16,6 +16,7 @@ that failed. A submission whose grading.json shows the same files, checks and se
 not graded again, unless force is asked.
 """
 import hashlib
+import importlib
 import json
 import os
 import queue
@@ -37,10 +38,8 @@ else:  # tomllib came with Python 3.11; tomli is the same reader, for Python 3.1
     import tomli as tomllib
 
 import course_kit.feedback
-import course_kit.handback
 import course_kit.handout
 import course_kit.isolation
-import course_kit.judging
 import course_kit.sandbox
 
 CONFIG = course_kit.handout.KIT / "grading.toml"
@@ -294,8 +293,8 @@ def kit_fingerprint(config):
     for name, content in course_kit.handout.handout_files().items():
         sha.update(name.encode() + b"\0" + content + b"\0")
     machinery = [course_kit.handout.REPO / path for path in framework_machinery()]
-    kit = [course_kit.isolation, course_kit.sandbox, course_kit.handback, course_kit.judging]
-    for path in machinery + [Path(module.__file__) for module in kit]:
+    kit = ("isolation.py", "sandbox.py", "handback.py", "judging.py")
+    for path in machinery + [course_kit.handout.KIT / name for name in kit]:
         sha.update(path.read_bytes())
     sha.update(config.text.encode())
     return sha.hexdigest()
@@ -398,9 +397,10 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
             for index in range(jobs if todo else 0):
                 servers.put(course_kit.isolation.StepServer(
                     cores[index % len(cores)], course_kit.sandbox.confinement(isolation)))
-            # made while the servers start: the inputs, and what the framework makes of them
-            trial = course_kit.judging.drawn_trial(draws or random.SystemRandom()) if (
-                todo) else None
+            # imported and made while the servers start: the judge (numpy, the framework),
+            # the inputs, and what the framework makes of them
+            judging = importlib.import_module("course_kit.judging")
+            trial = judging.drawn_trial(draws or random.SystemRandom()) if todo else None
             # The pool ends before the servers close: a submission still being graded
             # gives its server back first, and one not started yet never waits for one
             with ThreadPoolExecutor(max_workers=jobs) as pool:

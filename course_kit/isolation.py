@@ -194,7 +194,8 @@ def step_process(workdir, task, result_path, log_path, limits, user=None, proces
         rendered, extra = [], {"story": render.pixel_history(task["name"], draw,
                                                              *task["pixel"])}
     else:
-        rendered, extra = [render.collect(name, draw, out) for name in task["names"]], {}
+        rendered, extra = [render.collect(name, draw, out, task["traced"])
+                           for name in task["names"]], {}
     extra.update(refused=refused, limits_not_set=limits_not_set)
     with os.fdopen(result, "wb") as file:
         handback.write(file, rendered, extra)

@@ -91,25 +91,52 @@ def rendered_from(name, arrays, texts):
                            texts["not_bool"])
 
 
+class NoData(Exception):
+    """A step's process that handed back no data to judge: why, and what it printed."""
+
+    def __init__(self, why, output):
+        super().__init__(why)
+        self.why, self.output = why, output
+
+
+def _collect(label, names, traced, trial, server, workdir, scratch, limits):
+    """({name: Rendered}, the rest of meta.json, what it printed) of the checks `names`
+    run by a step's process (with compute_color traced on its own when traced). Raises
+    NoData."""
+    task = {"kind": "collect", "names": list(names), "draw": trial.draw, "traced": traced}
+    path, why, output = server.run_step(workdir, scratch, label, task, limits)
+    if path is None:
+        raise NoData(why, output)
+    try:
+        rendered, meta = course_kit.handback.read(path, names, trial.draw, rendered_from)
+    except course_kit.handback.Malformed as error:
+        raise NoData(f"refused: the step's process {error}", output) from None
+    return {one.name: one for one in rendered}, meta, output
+
+
 def judge_step(step, trial, server, workdir, scratch, limits):
     """(the step's checks as dicts, the refusals, the limits not set, why there is no
     result or "", what the step printed) of step on the working copy workdir."""
     names = checks.STEPS[step]
     asked = names + (("probe",) if step == "1.1" else ())  # a black Lazy image needs it
-    task = {"kind": "collect", "names": list(asked), "draw": trial.draw}
-    path, why, output = server.run_step(workdir, scratch, step, task, limits)
-    if path is None:
-        return [], [], [], why, output
+    run = (trial, server, workdir, scratch, limits)
     try:
-        rendered, meta = course_kit.handback.read(path, asked, trial.draw, rendered_from)
-    except course_kit.handback.Malformed as error:
-        return [], [], [], f"refused: the step's process {error}", output
-    by_name = {one.name: one for one in rendered}
-    folder = Path(scratch) / "checks"
+        by_name, meta, output = _collect(step, asked, False, *run)
+        judged = {name: _judge(by_name, name, trial, scratch) for name in names}
+        # compute_color on its own, for a wrong image only: a mistake of render() counts
+        # in the check of its rays, not in every image (practice1_checks.judge_rendered)
+        again = [name for name, check in judged.items() if not check.passed
+                 and checks.ray_traced(name) and by_name[name].arrays.get("image") is not None]
+        if again:
+            retraced, more, _ = _collect(f"{step}_traced", again, True, *run)
+            by_name.update(retraced)
+            meta["refused"] = meta.get("refused", []) + more.get("refused", [])
+            judged.update((name, _judge(by_name, name, trial, scratch)) for name in again)
+    except NoData as error:
+        return [], [], [], error.why, error.output
     results = []
     for name in names:
-        check = checks.judge_rendered(by_name[name], trial.data, trial.cases,
-                                      folder / name, by_name.get("probe"))
+        check = judged[name]
         framework_story = ""
         if check.story_pixel:
             framework_story = _tell_story(check, step, trial, server, workdir, scratch,
@@ -117,6 +144,12 @@ def judge_step(step, trial, server, workdir, scratch, limits):
         results.append(dict(_as_dict(check, step, Path(scratch) / "images"),
                             framework_story=framework_story))
     return results, meta.get("refused", []), meta.get("limits_not_set", []), "", output
+
+
+def _judge(by_name, name, trial, scratch):
+    """The Check of the Rendered by_name[name]."""
+    return checks.judge_rendered(by_name[name], trial.data, trial.cases,
+                                 Path(scratch) / "checks" / name, by_name.get("probe"))
 
 
 def _tell_story(check, step, trial, server, workdir, scratch, limits):

@@ -732,7 +732,8 @@ def run_step_after(prelude, handout, tmp_path, wall_seconds, core=None):
     try:
         limits = {"cpu_seconds": 60, "wall_seconds": wall_seconds, "memory_mib": 2048,
                   "output_kib": 256}
-        task = {"kind": "collect", "names": ["lazy"], "draw": render.PUBLISHED}
+        task = {"kind": "collect", "names": ["lazy"], "draw": render.PUBLISHED,
+                "traced": False}
         return server.run_step(work, tmp_path, "1.1", task, limits)
     finally:
         server.close()

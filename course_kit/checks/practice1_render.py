@@ -254,16 +254,17 @@ class Rendered:
     not_bool: str = None
 
 
-def collect(name, draw, out):
-    """The Rendered of the check `name` (any_hit or a name of RENDERED) with draw's inputs;
-    the course's save_image writes into out/<name>/. Errors of the student's code are
-    kept as text."""
+def collect(name, draw, out, traced=True):
+    """The Rendered of the check `name` (any_hit or a name of RENDERED) with draw's inputs,
+    with the image of compute_color traced on its own (traced_image) when traced; the
+    course's save_image writes into out/<name>/. Errors of the student's code are kept as
+    text."""
     rendered = Rendered(name)
     try:
         if name == "any_hit":
             _ask_any_hit(rendered, draw)
         else:
-            _render_image(rendered, draw, Path(out) / name)
+            _render_image(rendered, draw, Path(out) / name, traced)
     except KeyboardInterrupt:
         raise
     except BaseException as error:  # SystemExit too: the student's code called sys.exit
@@ -293,7 +294,7 @@ def _ask_any_hit(rendered, draw):
     rendered.arrays["answers"] = np.array(answers, dtype=np.int64)
 
 
-def _render_image(rendered, draw, folder):
+def _render_image(rendered, draw, folder, traced):
     common, _, integrators = course_modules()
     # The course's save_image writes into the folder it is given and creates none
     folder.mkdir(parents=True, exist_ok=True)
@@ -308,7 +309,7 @@ def _render_image(rendered, draw, folder):
             rendered.first_color = repr(color)[:ERROR_TEXT]
             return
     rendered.arrays["image"] = render(integrator, scene)
-    if ray_traced:
+    if ray_traced and traced:
         try:
             rendered.arrays["traced"] = traced_image(integrator, scene_of(rendered.name,
                                                                           draw))
