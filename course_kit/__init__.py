@@ -2,12 +2,13 @@
 this framework, the grader of what they hand in and Gradescope's autograder.
 
     handout      the handout: the course modules with the solutions cut out (handout.py)
-    grader       grades a folder of submissions (grader.py), each step in a process of its
-                 own (isolation.py, the step server) inside a sandbox (sandbox.py), and
-                 writes the reports (feedback.py)
+    grader       grades a folder of submissions (grader.py), each step's student code
+                 in a process of its own (isolation.py, the step server) inside a sandbox
+                 (sandbox.py), handing back data only (handback.py), judged in the
+                 grader's process (judging.py); and writes the reports (feedback.py)
     autograder   Gradescope's zip and its run (autograder.py)
-    references   the checks' expected images (references.py, with the course's own
-                 arithmetic: arithmetic.py)
+    references   the checks' expected images, stored and made at grading time
+                 (references.py, with the course's own arithmetic: arithmetic.py)
     checks/      the students' checks, shipped in the handout's tests/
     grading.toml points, limits and visibilities
 

@@ -13,7 +13,9 @@ when Python cannot even start, run_autograder writes one of its own.
 
 ROOT is the environment variable AUTOGRADER_ROOT, /autograder by default, and the Python
 that runs the grader AUTOGRADER_PYTHON, python3 by default: so the zip runs end to end in
-a temporary folder too, with any Python.
+a temporary folder too, with any Python. AUTOGRADER_ISOLATION, when set, names the
+isolation (course_kit/sandbox.py); process isolation, which keeps no secret from the
+students' code, runs only when named so.
 """
 import argparse
 import json
@@ -59,7 +61,8 @@ RUN_AUTOGRADER = """\
 # Python itself cannot start.
 ROOT="${AUTOGRADER_ROOT:-/autograder}"
 rm -f "$ROOT/results/results.json"
-(cd "$ROOT/source" && "${AUTOGRADER_PYTHON:-python3}" -m course_kit.autograder run)
+(cd "$ROOT/source" && "${AUTOGRADER_PYTHON:-python3}" -m course_kit.autograder run \
+    ${AUTOGRADER_ISOLATION:+--isolation "$AUTOGRADER_ISOLATION"})
 if [ ! -s "$ROOT/results/results.json" ]; then
     mkdir -p "$ROOT/results"
     echo '{"score": 0, "output": "The autograder failed before it could grade, and your' \\
@@ -132,13 +135,22 @@ def run(root, isolation=None):
     start = time.monotonic()
     results = root / "results"
     results.mkdir(parents=True, exist_ok=True)
-    results.chmod(0o700)  # the student's code may run as another user: not for its eyes
+    # the student's code may run as another user: none of these is for its eyes
+    for folder in (results, root / "source", root / SUBMISSION_NAME):
+        if folder.is_dir():
+            folder.chmod(0o700)
     try:
         # imported here, so that a grader that cannot even load (a requirement missing on
         # the image) leaves its results.json too
         import course_kit.feedback
         import course_kit.grader
         config = course_kit.grader.load_config(course_kit.grader.CONFIG)
+        chosen = course_kit.sandbox.choose(isolation)
+        if chosen.mode == "process" and isolation != "process":
+            raise course_kit.sandbox.IsolationUnavailable(
+                "neither bubblewrap nor an unprivileged user can run here ("
+                + chosen.why + "), and process isolation keeps no secret from the "
+                "students' code: it runs only when asked for (AUTOGRADER_ISOLATION=process)")
         submission = gradescope_submission(root / SUBMISSION_NAME)
         with tempfile.TemporaryDirectory(prefix="pyrt-autograder-") as graded:
             record, = course_kit.grader.grade_submissions(

@@ -3,10 +3,12 @@
 Every entry of SUBMISSIONS (a folder or a .zip) is one submission: the course modules it
 holds (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py, wherever they
 lie in it; the shallowest of each name counts) are copied over a fresh copy of the
-handout, and each assignment step's checks (course_kit/checks/practice1_checks.py, the students'
-own checks) run there in a process of their own (course_kit/isolation.py) with limits of
-time, memory and output, isolated as course_kit/sandbox.py chooses (bubblewrap's sandbox, an
-unprivileged user, or the process alone). The submissions themselves are only read.
+handout without its checks. Each assignment step runs the student's code there, on
+inputs drawn for this grading, in a process of its own (course_kit/isolation.py) with
+limits of time, memory and output, isolated as course_kit/sandbox.py chooses (bubblewrap's
+sandbox, an unprivileged user, or the process alone); that process hands back data only,
+which this process judges (course_kit/judging.py) with the students' own rules
+(course_kit/checks/practice1_checks.py). The submissions themselves are only read.
 
 RESULTS gets grades.csv, and for each submission a folder with feedback.html, results.json
 (Gradescope's format), grading.json (the grader's record) and the images of the checks
@@ -14,9 +16,11 @@ that failed. A submission whose grading.json shows the same files, checks and se
 not graded again, unless force is asked.
 """
 import hashlib
+import importlib
 import json
 import os
 import queue
+import random
 import shutil
 import sys
 import tempfile
@@ -34,8 +38,8 @@ else:  # tomllib came with Python 3.11; tomli is the same reader, for Python 3.1
     import tomli as tomllib
 
 import course_kit.feedback
-import course_kit.isolation
 import course_kit.handout
+import course_kit.isolation
 import course_kit.sandbox
 
 CONFIG = course_kit.handout.KIT / "grading.toml"
@@ -50,6 +54,29 @@ LIMIT_NAMES = ("cpu_seconds", "wall_seconds", "memory_mib", "output_kib")
 # printed (stdout_visibility); the defaults are what results.json has always said
 GRADESCOPE_DEFAULTS = {"visibility": "visible", "stdout_visibility": "hidden"}
 VISIBILITIES = ("hidden", "visible", "after_due_date", "after_published")
+# PyRT's machinery that gives the answers of steps 1.2 and 1.4 (the fast any_hit, the
+# fused Phong, the stories' Phong terms): a working copy has none of it, and the plain code that stands in for it
+# runs the student's own (or the framework's own) any_hit and compute_color
+ANSWERING_MACHINERY = ("pyrt/acceleration/accelerated.py", "pyrt/acceleration/queries.py",
+                       "pyrt/acceleration/phong.py", "pyrt/acceleration/culling.py",
+                       "pyrt/course_model.py")
+PLAIN_ACCELERATION = '''"""PyRT's acceleration, left out of the grader's working copy: the plain code runs."""
+import contextlib
+
+
+def accelerated(integrator, rays=None):
+    """No acceleration: the scene's and the integrator's own methods run."""
+    return contextlib.nullcontext()
+
+
+def plain(obj):
+    """Nothing to take off: nothing was put on."""
+
+
+def debugger_attached():
+    """Whether a debugger is attached: never asked for in a working copy."""
+    return False
+'''
 MAX_MODULE_BYTES = 1024 * 1024  # a course module larger than this is not taken
 OUTPUT_SHOWN = 4000  # characters of a step's output kept for the feedback
 REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
@@ -204,62 +231,56 @@ def _read_zip(submission):
 # ------------------------------------------------------------------------------------------
 def framework_machinery():
     """The modules of PyRT's machinery that the handout leaves out (pyrt/rendering.py, ...),
-    as paths relative to the repository: the working copies hold them too, so that the
-    finished framework itself can be graded."""
-    shipped = set(course_kit.handout.SHIPPED_AS_IS)
+    as paths relative to the repository, but those that compute a step's answer (see
+    PLAIN_ACCELERATION): the working copies hold them too, so that the finished framework
+    itself can be graded."""
+    shipped = set(course_kit.handout.SHIPPED_AS_IS) | set(ANSWERING_MACHINERY)
     repo = course_kit.handout.REPO
     return [path.relative_to(repo) for path in sorted((repo / "pyrt").rglob("*.py"))
             if path.relative_to(repo).as_posix() not in shipped]
 
 
-def grade_steps(submission, template, scratch, config, server):
-    """The verdicts of every step for submission, its working copy made in scratch, its
-    steps run by server (a course_kit.isolation.StepServer)."""
-    workdir = scratch / "work"
-    shutil.copytree(template, workdir)
+def make_working_copy(submission, template, workdir):
+    """The working copy of submission in workdir: the handout without its checks, PyRT's
+    machinery without what computes an answer, and the submission's modules."""
+    shutil.copytree(template, workdir, ignore=lambda folder, names: (
+        ["tests"] if Path(folder) == Path(template) else []))
     for path in framework_machinery():
         (workdir / path).parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(course_kit.handout.REPO / path, workdir / path)
+    (workdir / "pyrt" / "acceleration" / "accelerated.py").write_text(PLAIN_ACCELERATION)
     for name, content in submission.files.items():
         (workdir / name).write_bytes(content)
+
+
+def grade_steps(submission, template, scratch, config, server, trial):
+    """The verdicts of every step for submission, its working copy made in scratch, its
+    steps run by server (a course_kit.isolation.StepServer) on the inputs of trial (a
+    course_kit.judging.Trial) and judged here."""
+    workdir = scratch / "work"
+    make_working_copy(submission, template, workdir)
     course_kit.sandbox.hand_over(scratch, workdir, server.confinement.user)
-    images = scratch / "images"
     verdicts = []
     for step, title in STEP_TITLES.items():
-        result, why, output = server.run_step(workdir, scratch, step, config.limits)
-        verdict = {"step": step, "title": title, "max_points": config.points[step],
-                   "output": output[-OUTPUT_SHOWN:], "checks": []}
-        if result is None:
-            verdict.update(passed=False, reason=why)
+        checks, refused, limits_not_set, why, output = course_kit.judging.judge_step(
+            step, trial, server, workdir, scratch, config.limits)
+        failed = [check for check in checks if not check["passed"]]
+        if why:
+            reason = why
+        elif refused:
+            reason = "refused: " + "; ".join(dict.fromkeys(refused))
+        elif failed:
+            reason = course_kit.feedback.check_reason(failed[0])
         else:
+            reason = ""
+        passed = not reason
+        verdicts.append({
+            "step": step, "title": title, "max_points": config.points[step],
+            "output": output[-OUTPUT_SHOWN:], "checks": checks, "passed": passed,
+            "reason": reason, "points": config.points[step] if passed else 0,
             # the system's doing, not the student's: grade_submission takes it out
-            verdict["limits_not_set"] = result["limits_not_set"]
-            verdict["checks"] = [_kept_images(check, step, images)
-                                 for check in result["checks"]]
-            failed = [check for check in verdict["checks"] if not check["passed"]]
-            if result["refused"]:
-                reason = "refused: " + "; ".join(dict.fromkeys(result["refused"]))
-            elif failed:
-                reason = course_kit.feedback.check_reason(failed[0])
-            else:
-                reason = ""
-            verdict.update(passed=not reason, reason=reason)
-        verdict["points"] = verdict["max_points"] if verdict["passed"] else 0
-        verdicts.append(verdict)
+            "limits_not_set": limits_not_set})
     return verdicts
-
-
-def _kept_images(check, step, images):
-    """check, with its images copied out of the working copy into images/ as
-    <step>_<check>_<kind>.png."""
-    kept = {}
-    for kind, path in check["images"].items():
-        target = images / f"{step}_{check['name']}_{kind}.png"
-        if Path(path).is_file():
-            images.mkdir(exist_ok=True)
-            shutil.copyfile(path, target)
-            kept[kind] = f"images/{target.name}"
-    return dict(check, images=kept)
 
 
 # ------------------------------------------------------------------------------------------
@@ -267,22 +288,24 @@ def _kept_images(check, step, images):
 # ------------------------------------------------------------------------------------------
 def kit_fingerprint(config):
     """What else decides a grade besides the submission: the handout with its checks and
-    expected images, the step's process and the settings."""
+    expected images, the step's process, the judge and the settings."""
     sha = hashlib.sha256()
     for name, content in course_kit.handout.handout_files().items():
         sha.update(name.encode() + b"\0" + content + b"\0")
     machinery = [course_kit.handout.REPO / path for path in framework_machinery()]
-    for path in machinery + [Path(course_kit.isolation.__file__),
-                             Path(course_kit.sandbox.__file__)]:
+    kit = ("isolation.py", "sandbox.py", "handback.py", "judging.py")
+    for path in machinery + [course_kit.handout.KIT / name for name in kit]:
         sha.update(path.read_bytes())
     sha.update(config.text.encode())
     return sha.hexdigest()
 
 
-def grade_submission(submission, template, results, config, kit, servers, isolation):
-    """Grades one submission and writes its folder of results; returns its record. Its
-    steps run on a step server taken from the queue servers, and given back, isolated
-    as isolation (a course_kit.sandbox.Isolation) says."""
+def grade_submission(submission, template, results, config, kit, servers, isolation,
+                     trial):
+    """Grades one submission on the inputs of trial (a course_kit.judging.Trial) and
+    writes its folder of results; returns its record. Its steps run on a step server
+    taken from the queue servers, and given back, isolated as isolation (a
+    course_kit.sandbox.Isolation) says."""
     fingerprint = hashlib.sha256((submission.digest() + kit).encode()).hexdigest()
     start = time.monotonic()
     server = servers.get()
@@ -290,7 +313,7 @@ def grade_submission(submission, template, results, config, kit, servers, isolat
         with tempfile.TemporaryDirectory(prefix=f"pyrt-grading-{os.getpid()}-",
                                          dir=server.confinement.cell) as scratch:
             scratch = Path(scratch)
-            steps = grade_steps(submission, template, scratch, config, server)
+            steps = grade_steps(submission, template, scratch, config, server, trial)
             limits_not_set = sorted({line for step in steps
                                      for line in step.pop("limits_not_set", ())})
             record = {
@@ -300,6 +323,7 @@ def grade_submission(submission, template, results, config, kit, servers, isolat
                           for name in course_kit.handout.COURSE_MODULES},
                 "problems": submission.problems,
                 "isolation": isolation.mode,
+                "draw": {"size": trial.draw.size, "offset": list(trial.draw.offset)},
                 "steps": steps,
                 "total": sum(step["points"] for step in steps),
                 "max_total": sum(config.points.values()),
@@ -330,24 +354,32 @@ def recorded(results, submission, kit):
 
 
 def grade_folder(submissions_folder, results, config, jobs=None, force=False, progress=True,
-                 isolation=None):
+                 isolation=None, draws=None):
     """Grades every submission of submissions_folder into results (see the module's
     docstring and grade_submissions); returns the records, sorted by submission."""
     return grade_submissions(find_submissions(submissions_folder), results, config, jobs,
-                             force, progress, isolation)
+                             force, progress, isolation, draws)
 
 
 def grade_submissions(submissions, results, config, jobs=None, force=False, progress=True,
-                      isolation=None):
+                      isolation=None, draws=None):
     """Grades the Submissions into results (see the module's docstring), their steps
-    isolated as course_kit.sandbox.choose(isolation) says, which it prints; returns their
-    records, in the order of submissions."""
+    isolated as course_kit.sandbox.choose(isolation) says, which it prints, on inputs
+    drawn now with draws (a random.Random; default: the system's own source, which no
+    submission can foresee); returns their records, in the order of submissions."""
     results = Path(results)
     results.mkdir(parents=True, exist_ok=True)
     isolation = course_kit.sandbox.choose(isolation)
     print(f"Isolation of each step: {isolation.describe()}", flush=True)
     if isolation.mode == "unprivileged user":
         results.chmod(0o700)  # the steps' users may read what all may read
+        # checked, not assumed: the finished framework, the expected data, the results
+        # and the submissions must be out of a step's reach
+        repo = course_kit.handout.REPO
+        course_kit.sandbox.check_unreadable(
+            [repo / name for name in course_kit.handout.COURSE_MODULES]
+            + [course_kit.handout.EXPECTED, results]
+            + sorted({submission.path.parent for submission in submissions}))
     kit = kit_fingerprint(config) + isolation.mode
     records = {}
     if not force:
@@ -365,11 +397,15 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
             for index in range(jobs if todo else 0):
                 servers.put(course_kit.isolation.StepServer(
                     cores[index % len(cores)], course_kit.sandbox.confinement(isolation)))
+            # imported and made while the servers start: the judge (numpy, the framework),
+            # the inputs, and what the framework makes of them
+            judging = importlib.import_module("course_kit.judging")
+            trial = judging.drawn_trial(draws or random.SystemRandom()) if todo else None
             # The pool ends before the servers close: a submission still being graded
             # gives its server back first, and one not started yet never waits for one
             with ThreadPoolExecutor(max_workers=jobs) as pool:
                 running = [pool.submit(grade_submission, submission, template, results,
-                                       config, kit, servers, isolation)
+                                       config, kit, servers, isolation, trial)
                            for submission in todo]
                 try:
                     for done in tqdm(as_completed(running), total=len(running),

@@ -36,7 +36,7 @@ SHIPPED_AS_IS = ("pyrt/__init__.py", "pyrt/images.py", "pyrt/environment_maps.py
 FIGURES = ("figure1_phong.png", "figure2_lazy.png", "figure3_intersection.png",
            "figure4_depth.png", "figure4_normal.png", "figure5_phong.png")
 # The students' checks: course_kit/checks/<name> goes to tests/<name> in the handout
-CHECK_FILES = ("practice1_checks.py", "test_practice1.py")
+CHECK_FILES = ("practice1_checks.py", "practice1_render.py", "test_practice1.py")
 # The packages the handout needs, with the framework's version bounds
 HANDOUT_PACKAGES = ("numpy", "opencv-python-headless", "matplotlib", "pytest")
 PYTEST_INI = "[pytest]\ntestpaths = tests\npythonpath = .\naddopts = -ra\n"

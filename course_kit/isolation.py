@@ -8,7 +8,7 @@ new, and shares nothing with the others. A server given a core runs on that core
 and so do its steps' processes: the grader gives each server a core of its own, and PyRT's
 own render() (the finished framework graded as a submission) then stays in its process
 instead of starting workers. The server reads one request per line on its standard input
-(JSON: workdir, step, result, log, limits), forks the step's process, waits for it at most
+(JSON: workdir, task, result, log, limits), forks the step's process, waits for it at most
 the step's wall-clock limit (killing it then), and answers one line: {"code": its exit
 code, negative for a signal, "timed_out": true or false}.
 
@@ -16,13 +16,17 @@ Before the student's code is imported, the step's process
 - sends what it prints into the log file, outside the working copy,
 - lowers its limits of processor time, address space and file size (what it prints
   included: a process that prints without end is killed), and writes no core file,
-- keeps on its import path only the working copy, its tests/ (the checks) and Python's
-  own libraries,
+- keeps on its import path only the working copy and Python's own libraries,
 - installs an audit hook that refuses, and notes, every write outside the working copy or
-  into its checks (tests/) and every start of another process.
-At the end it writes the checks' verdicts, the refusals and the limits the system would
-not set as JSON to the result file, outside the working copy. A process that ends before
-that (os._exit, a crash, a limit) leaves no result, and the grader says why.
+  into a tests/ folder in it, and every start of another process.
+Then it runs its task with the student's code: "collect" renders and answers for the
+checks named (checks/practice1_render.py, loaded by the server before any step), "story"
+tells a pixel's history. It hands back data only, no verdict, into the result file
+outside the working copy (course_kit/handback.py): the grader reads it with limits and
+judges it in its own process (course_kit/judging.py), so nothing the student's code does
+in its process changes how it is judged. A process that ends before that (os._exit, a
+crash, a limit) or with another exit code than 0 hands back nothing, and the grader says
+why.
 
 This keeps a submission from disturbing the others by accident. It is no security
 sandbox: code that sets out to escape can (see docs/course-kit.md). A Confinement adds
@@ -31,6 +35,7 @@ of their own with a limit on their processes, and whatever a step leaves running
 when it ends.
 """
 import argparse
+import importlib.util
 import json
 import os
 import signal
@@ -49,11 +54,17 @@ except ImportError:  # Windows: no process limits, and no fork either (see unsup
 
 # What every course module imports, loaded once by the step server
 PRELOADED = ("numpy", "cv2", "matplotlib.pyplot")
+# What a step runs besides the student's code, loaded by the step server from the kit:
+# what the student's code makes, as data (practice1_render), and how it goes back
+KIT = Path(__file__).resolve().parent
+STEP_MODULES = (KIT / "checks" / "practice1_render.py", KIT / "handback.py")
 # The step server's environment: a few of the grader's variables, no window, and one
 # thread for the numerical libraries, as each submission has processes of its own
 KEPT_VARIABLES = ("PATH", "HOME", "LANG", "LC_ALL", "TMPDIR")
 ENVIRONMENT = {"MPLBACKEND": "Agg", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
                "MKL_NUM_THREADS": "1"}
+MAX_REFUSALS = 20  # refusals noted by a step, the first ones
+OUTPUT_READ = 64 * 1024  # bytes of the end of a step's output that the grader reads
 POLL_SECONDS = 0.01  # how often the server looks whether a step's process has ended
 # Audit events that write, with the number of paths they name first, and that start a
 # process
@@ -110,20 +121,26 @@ def guard(workdir, refused):
             return f"wrote into the checks: {name}"
         return None
 
+    def note(refusal):
+        """Notes a refusal once (code that repeats one, pixel after pixel, says it once),
+        and at most MAX_REFUSALS of them."""
+        if refusal not in refused and len(refused) < MAX_REFUSALS:
+            refused.append(refusal)
+
     def hook(event, args):
         if event == "open":
             paths = [args[0]] if args[2] & WRITE_FLAGS else []
         elif event in WRITING_EVENTS:
             paths = list(args[:WRITING_EVENTS[event]])
         elif event in PROCESS_EVENTS:
-            refused.append(f"started a process ({event})")
+            note(f"started a process ({event})")
             raise PermissionError(f"grading: {event} is not allowed while grading")
         else:
             return
         for path in paths:
             why = forbidden(path)
             if why is not None:
-                refused.append(f"{why} ({event})")
+                note(f"{why} ({event})")
                 raise PermissionError(f"grading: refused, the code {why}")
 
     return hook
@@ -156,30 +173,32 @@ def become(user, processes):
         resource.setrlimit(resource.RLIMIT_NPROC, (processes, processes))
 
 
-def step_process(workdir, step, result_path, log_path, limits, user=None, processes=None):
+def step_process(workdir, task, result_path, log_path, limits, user=None, processes=None):
     """The body of a step's process: see the module's docstring; user and processes as
     become takes them, once its log and result files are open."""
     log = os.open(log_path, os.O_WRONLY | os.O_APPEND)
     os.dup2(log, 1)
     os.dup2(log, 2)
     signal.signal(signal.SIGXFSZ, signal.SIG_DFL)  # Python ignores it: a write would fail
-    result = open(result_path, "w", encoding="utf-8")
+    result = os.open(result_path, os.O_WRONLY)
     become(user, processes)
     limits_not_set = set_limits(limits)
     os.chdir(workdir)
-    sys.path[:] = [workdir, os.path.join(workdir, "tests")] + _python_paths()
-    import practice1_checks
+    sys.path[:] = [workdir] + _python_paths()
     refused = []
     sys.addaudithook(guard(workdir, refused))
-    checks = practice1_checks.run_step(step)
-    json.dump({"checks": [{"name": check.name, "title": check.title,
-                           "passed": check.passed, "reason": check.reason,
-                           "note": check.note, "message": check.message, "error": check.error,
-                           "images": {kind: str(path) for kind, path in check.images.items()},
-                           "story": check.story, "story_pixel": list(check.story_pixel)}
-                          for check in checks],
-               "refused": refused, "limits_not_set": limits_not_set}, result)
-    result.close()
+    render, handback = sys.modules["practice1_render"], sys.modules["handback"]
+    draw = render.draw_from_json(task["draw"])
+    out = os.path.join(workdir, "out", "checks")
+    if task["kind"] == "story":
+        rendered, extra = [], {"story": render.pixel_history(task["name"], draw,
+                                                             *task["pixel"])}
+    else:
+        rendered, extra = [render.collect(name, draw, out, task["traced"])
+                           for name in task["names"]], {}
+    extra.update(refused=refused, limits_not_set=limits_not_set)
+    with os.fdopen(result, "wb") as file:
+        handback.write(file, rendered, extra)
 
 
 # ------------------------------------------------------------------------------------------
@@ -195,6 +214,10 @@ def serve(core=None, user=None, processes=None, sweep=False):
         _prctl(PR_SET_CHILD_SUBREAPER, 1)
     for name in PRELOADED:
         __import__(name)
+    for path in STEP_MODULES:  # the steps' own code, loaded before they lose the kit
+        spec = importlib.util.spec_from_file_location(path.stem, path)
+        sys.modules[path.stem] = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(sys.modules[path.stem])
     for line in sys.stdin:
         request = json.loads(line)
         pid = os.fork()
@@ -234,7 +257,7 @@ def _child(request, user, processes):
     code = 1
     try:
         os.dup2(os.open(os.devnull, os.O_RDONLY), 0)
-        step_process(request["workdir"], request["step"], request["result"],
+        step_process(request["workdir"], request["task"], request["result"],
                      request["log"], request["limits"], user, processes)
         code = 0
     except SystemExit as error:
@@ -322,13 +345,16 @@ class StepServer:
             pass
         self.process.wait()
 
-    def run_step(self, workdir, scratch, step, limits):
-        """Runs the checks of step on workdir in a process of its own, its log and result
-        in scratch; returns (the result, or None; why there is none; what it printed)."""
-        result_path, log_path = Path(scratch) / f"{step}.json", Path(scratch) / f"{step}.log"
+    def run_step(self, workdir, scratch, label, task, limits):
+        """Runs task (see step_process) on workdir in a process of its own, its log and
+        result in scratch, named after label; returns (the path of its result, or None;
+        why there is none; what it printed). The result is as the student's code left
+        it: course_kit/handback.py reads it."""
+        result_path = Path(scratch) / f"{label}.result"
+        log_path = Path(scratch) / f"{label}.log"
         result_path.write_bytes(b"")
         log_path.write_bytes(b"")
-        request = {"workdir": str(workdir), "step": step, "result": str(result_path),
+        request = {"workdir": str(workdir), "task": task, "result": str(result_path),
                    "log": str(log_path), "limits": limits}
         try:
             self.process.stdin.write(json.dumps(request) + "\n")
@@ -339,13 +365,12 @@ class StepServer:
         if not answer:
             raise RuntimeError("the grader's step server ended unexpectedly")
         answer = json.loads(answer)
-        output = log_path.read_bytes().decode("utf-8", "replace")
-        data = result_path.read_bytes()
+        output = log_path.read_bytes()[-OUTPUT_READ:].decode("utf-8", "replace")
         if answer["timed_out"]:
             return None, (f"did not finish within {limits['wall_seconds']} s, the time "
                           "limit of a step: the code hangs or is far too slow"), output
-        if data:
-            return json.loads(data), None, output
+        if answer["code"] == 0 and result_path.stat().st_size:
+            return result_path, None, output
         return None, _why_no_result(answer["code"], limits, output), output
 
 
@@ -360,6 +385,8 @@ def _why_no_result(code, limits, output):
         return f"ran out of memory: a step may use {limits['memory_mib']} MiB"
     if code < 0:
         return f"the process was killed by {signal.Signals(-code).name}"
+    if code == 0:
+        return "the process ended before the checks were done, handing back nothing"
     return (f"the process ended (exit code {code}) before the checks were done: the code "
             "called os._exit, or ended the process some other way")
 

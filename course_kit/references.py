@@ -17,10 +17,13 @@ For each image of practice1_checks.IMAGES, at practice1_checks.SIZE pixels:
 
 The file is written the same, byte for byte, whenever the framework's images are.
 """
+import contextlib
 import io
 import sys
 import tempfile
+import threading
 import zipfile
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
@@ -28,6 +31,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent / "checks"))
 
 import practice1_checks as checks  # noqa: E402  (found through the line above)
+import practice1_render as render  # noqa: E402
 import PyRT_Integrators  # noqa: E402
 from course_kit.arithmetic import with_course_arithmetic  # noqa: E402
 from PyRT_Common import BLACK, EPSILON, Length, Ray, RGBColor  # noqa: E402
@@ -95,12 +99,12 @@ SHADOW_RAYS = (blocked_beyond_t_min, blocked_from_lifted_start,
 class PhongVariant(PyRT_Integrators.PhongIntegrator):
     """Phong as the assignment describes it, written the way a student writes it (a shadow
     ray per light, one of SHADOW_RAYS), with parts that can be left out: the ambient
-    term, the shadows, the division by r^2."""
+    term, the shadows; and a falloff of 1/r^falloff, of which the course's is 2."""
 
-    def __init__(self, filename_, ambient=True, shadows=True, inverse_square=True,
+    def __init__(self, filename_, ambient=True, shadows=True, falloff=2,
                  blocked=blocked_beyond_t_min):
         super().__init__(filename_)
-        self.ambient, self.shadows, self.inverse_square = ambient, shadows, inverse_square
+        self.ambient, self.shadows, self.falloff = ambient, shadows, falloff
         self.blocked = blocked
 
     def compute_color(self, ray):
@@ -117,8 +121,9 @@ class PhongVariant(PyRT_Integrators.PhongIntegrator):
             if self.shadows and self.blocked(scene, hit, wi, r):
                 continue
             f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
-            color = color + light.intensity.multiply(f) / (r * r if self.inverse_square
-                                                           else 1.0)
+            # r * r, as students and the framework write it, to the last bit
+            color = color + light.intensity.multiply(f) / (
+                r * r if self.falloff == 2 else r ** self.falloff)
         return color
 
 
@@ -129,17 +134,19 @@ def mistake_integrator(mistake, filename):
         "unmapped_normals": lambda: UnmappedNormals(filename),
         "no_ambient": lambda: PhongVariant(filename, ambient=False),
         "no_shadows": lambda: PhongVariant(filename, shadows=False),
-        "no_inverse_square": lambda: PhongVariant(filename, inverse_square=False),
+        "no_inverse_square": lambda: PhongVariant(filename, falloff=0),
+        "inverse_distance": lambda: PhongVariant(filename, falloff=1),
     }[mistake]()
 
 
 # ------------------------------------------------------------------------------------------
 # Rendering
 # ------------------------------------------------------------------------------------------
-def framework_image(name, folder):
-    """The expected image of IMAGES[name]: the framework's integrator and its render()."""
-    integrator = checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
-    scene = checks.SCENES[checks.IMAGES[name].scene]()
+def framework_image(name, folder, draw=render.PUBLISHED):
+    """The expected image of IMAGES[name] at draw: the framework's integrator and its
+    render()."""
+    integrator = render.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
+    scene = render.scene_of(name, draw)
     integrator.add_scene(scene)
     integrator.render(workers=1, progress=False)
     return np.array(scene.rendered_image, dtype=float)
@@ -160,55 +167,122 @@ def course_shadow_rays(scene):
 def students_integrators(name, folder):
     """The integrators of IMAGES[name] as students write them: for Phong one per shadow
     ray of SHADOW_RAYS, else the framework's own."""
-    if checks.IMAGES[name].integrator == "PhongIntegrator":
+    if render.RENDERED[name][1] == "PhongIntegrator":
         return [PhongVariant(str(Path(folder) / name), blocked=blocked)
                 for blocked in SHADOW_RAYS]
-    return [checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)]
+    return [render.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)]
 
 
-def seams(name, expected, folder):
-    """(seam_pixels, seam_colors) of IMAGES[name], as the module docstring says."""
-    info = checks.IMAGES[name]
-    if info.integrator == "LazyIntegrator":
+def seams(name, expected, folder, draw=render.PUBLISHED, pixels=None):
+    """(seam_pixels, seam_colors) of IMAGES[name] at draw, as the module docstring says,
+    among pixels ((y, x) pairs; None: all)."""
+    integrator_name = render.RENDERED[name][1]
+    if integrator_name == "LazyIntegrator":
         return np.zeros((0, 2), np.int64), np.zeros((0, 0, 3))
 
     def scene():
-        return checks.SCENES[info.scene]()
+        return render.scene_of(name, draw)
 
-    integrator = checks.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
-    alternatives = [checks.traced_image(integrator, scene(), offset)
+    integrator = render.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
+    alternatives = [render.traced_image(integrator, scene(), offset, pixels)
                     for offset in SEAM_OFFSETS]
-    if info.integrator == "PhongIntegrator":
-        alternatives.append(checks.traced_image(integrator, course_shadow_rays(scene())))
-    alternatives += [checks.traced_image(student, with_course_arithmetic(scene()))
+    if integrator_name == "PhongIntegrator":
+        alternatives.append(render.traced_image(integrator, course_shadow_rays(scene()),
+                                                pixels=pixels))
+    alternatives += [render.traced_image(student, with_course_arithmetic(scene()),
+                                         pixels=pixels)
                      for student in students_integrators(name, folder)]
     stack = np.stack(alternatives)  # (K, height, width, 3)
     differs = np.zeros(expected.shape[:2], bool)
     for alternative in stack:
         differs |= ~checks.close(alternative, expected, checks.SEAM_TOLERANCE)
-    pixels = np.argwhere(differs)
-    return pixels, stack[:, pixels[:, 0], pixels[:, 1]].transpose(1, 0, 2)
+    if pixels is not None:  # the pixels not traced are no seams
+        asked = np.zeros(expected.shape[:2], bool)
+        asked[tuple(np.array(pixels, dtype=np.int64).reshape(-1, 2).T)] = True
+        differs &= asked
+    found = np.argwhere(differs)
+    return found, stack[:, found[:, 0], found[:, 1]].transpose(1, 0, 2)
+
+
+def mistake_image(name, mistake, folder, draw=render.PUBLISHED):
+    """The image of IMAGES[name] at draw with a known mistake: corner_rays, or one of
+    RENDERED_MISTAKES[name]."""
+    if mistake == "corner_rays":
+        integrator = render.make_integrator(name, str(Path(folder) / name), PyRT_Integrators)
+        return render.traced_image(integrator, render.scene_of(name, draw), CORNER)
+    return render.traced_image(mistake_integrator(mistake, str(Path(folder) / mistake)),
+                               render.scene_of(name, draw))
+
+
+def mistakes_of(name):
+    """The known mistakes whose images the expected data of IMAGES[name] holds."""
+    if name == "lazy":
+        return ()
+    return ("corner_rays",) + checks.RENDERED_MISTAKES.get(name, ())
 
 
 def expected_arrays():
     """Every array of course_kit/checks/expected/practice1.npz, by key."""
     arrays = {}
     with tempfile.TemporaryDirectory() as folder:
-        for name, info in checks.IMAGES.items():
+        for name in checks.IMAGES:
             expected = arrays[name] = framework_image(name, folder)
             arrays[f"{name}.seam_pixels"], arrays[f"{name}.seam_colors"] = seams(
                 name, expected, folder)
-            if info.integrator == "LazyIntegrator":
-                continue
-            integrator = checks.make_integrator(name, str(Path(folder) / name),
-                                                PyRT_Integrators)
-            arrays[f"{name}.mistake.corner_rays"] = checks.traced_image(
-                integrator, checks.SCENES[info.scene](), CORNER)
-            for mistake in checks.RENDERED_MISTAKES.get(name, ()):
-                arrays[f"{name}.mistake.{mistake}"] = checks.traced_image(
-                    mistake_integrator(mistake, str(Path(folder) / mistake)),
-                    checks.SCENES[info.scene]())
+            for mistake in mistakes_of(name):
+                arrays[f"{name}.mistake.{mistake}"] = mistake_image(name, mistake, folder)
     return arrays
+
+
+class GradingData(Mapping):
+    """The expected data of a draw made at grading time, by the finished framework, in
+    the form of the stored one (practice1_checks reads both): the expected images made at
+    once, the mistakes' images when first asked for, and the seams only at the pixels a
+    judged image gets wrong (seams_at), where they matter. Safe for the grader's threads."""
+
+    def __init__(self, draw):
+        self.draw = draw
+        self._arrays = {}
+        self._seams = {}  # (name, y, x) -> the colours of the seam there, or None
+        self._lock = threading.Lock()
+        self._folder = tempfile.mkdtemp(prefix="pyrt-expected-")
+        with contextlib.redirect_stdout(io.StringIO()):  # render() says where it saved
+            for name in checks.IMAGES:
+                self._arrays[name] = framework_image(name, self._folder, draw)
+        self._keys = list(checks.IMAGES) + [f"{name}.mistake.{mistake}"
+                                            for name in checks.IMAGES
+                                            for mistake in mistakes_of(name)]
+
+    def __getitem__(self, key):
+        if key not in self._keys:
+            raise KeyError(key)
+        with self._lock:
+            if key not in self._arrays:
+                name, _, mistake = key.partition(".mistake.")
+                self._arrays[key] = mistake_image(name, mistake, self._folder, self.draw)
+            return self._arrays[key]
+
+    def __iter__(self):
+        return iter(self._keys)
+
+    def __len__(self):
+        return len(self._keys)
+
+    def seams_at(self, name, wrong):
+        """[((y, x), the colours its rays may see)] of the seam pixels among those where
+        the mask `wrong` is True."""
+        with self._lock:
+            todo = [(int(y), int(x)) for y, x in np.argwhere(wrong)
+                    if (name, int(y), int(x)) not in self._seams]
+            if todo:
+                found, colours = seams(name, self._arrays[name], self._folder, self.draw,
+                                       todo)
+                self._seams.update(dict.fromkeys(((name, y, x) for y, x in todo)))
+                self._seams.update(((name, int(y), int(x)), c)
+                                   for (y, x), c in zip(found, colours))
+            return [((int(y), int(x)), self._seams[(name, int(y), int(x))])
+                    for y, x in np.argwhere(wrong)
+                    if self._seams[(name, int(y), int(x))] is not None]
 
 
 def npz_bytes(arrays):
@@ -225,11 +299,12 @@ def npz_bytes(arrays):
     return buffer.getvalue()
 
 
-def framework_story(name, x, y):
-    """The finished framework's history of pixel (x, y) of IMAGES[name] (pyrt/explain.py),
-    as text: what the feedback page shows beside a student's story of the same pixel."""
-    integrator = checks.make_integrator(name, "unused", PyRT_Integrators)
-    integrator.add_scene(checks.SCENES[checks.IMAGES[name].scene]())
+def framework_story(name, x, y, draw=render.PUBLISHED):
+    """The finished framework's history of pixel (x, y) of IMAGES[name] at draw
+    (pyrt/explain.py), as text: what the feedback page shows beside a student's story of
+    the same pixel."""
+    integrator = render.make_integrator(name, "unused", PyRT_Integrators)
+    integrator.add_scene(render.scene_of(name, draw))
     return str(integrator.explain_pixel(x, y))
 
 

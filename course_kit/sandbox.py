@@ -88,10 +88,12 @@ def bubblewrap_command(cell, root=None):
     python = sorted({path for path in python if not any(
         Path(path).is_relative_to(other) for other in python + list(SYSTEM_FOLDERS)
         if other != path)})  # each once: those in a folder already shown go with it
-    server = str(Path(course_kit.isolation.__file__).resolve())
+    # of the kit, only the server and the code its steps run besides the student's
+    kit = [str(Path(course_kit.isolation.__file__).resolve())] + [
+        str(path) for path in course_kit.isolation.STEP_MODULES]
     made = {"/", "/tmp", *SYSTEM_FOLDERS}
-    for path, option in [(folder, "--ro-bind") for folder in python] + [
-            (server, "--ro-bind"), (str(cell), "--bind")]:
+    for path, option in [(folder, "--ro-bind") for folder in python + kit] + [
+            (str(cell), "--bind")]:
         # the folders on the way, which bwrap would make readable by root only
         for parent in reversed(Path(path).parents):
             if str(parent) not in made:
@@ -154,6 +156,27 @@ def choose(requested=None):
             raise IsolationUnavailable(f"the isolation unprivileged user cannot run: {cannot}")
         why += f"; no unprivileged user: {cannot}"
     return Isolation("process", why)
+
+
+def readable_by_steps(paths):
+    """Those of paths (files, or folders to look into) that a step's user could read, as
+    root finds by asking the system as that user (the shell's test, which any user may
+    run): what the unprivileged user's isolation must not leave readable."""
+    probe = 'for p; do if [ -r "$p" ] || { [ -d "$p" ] && [ -x "$p" ]; }; then echo "$p"; fi; done'
+    ran = subprocess.run(["/bin/sh", "-c", probe, "sh", *map(str, paths)],
+                         user=FIRST_USER, group=FIRST_USER, extra_groups=[], cwd="/",
+                         capture_output=True, text=True, timeout=PROBE_SECONDS)
+    return ran.stdout.splitlines()
+
+
+def check_unreadable(paths):
+    """Raises IsolationUnavailable naming the first of paths that a step's user could
+    read (see readable_by_steps)."""
+    readable = readable_by_steps(paths)
+    if readable:
+        raise IsolationUnavailable(
+            f"the isolation unprivileged user cannot keep {readable[0]} from the students' "
+            "code: make the grader's folders readable by their owner only (chmod 700)")
 
 
 def _tasks_of(uid):

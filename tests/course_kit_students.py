@@ -164,6 +164,11 @@ return False
         "phong": RIGHT["phong"].replace("if not self.scene.any_hit(shadow_ray):", "if True:"),
     },
     "no_inverse_square": {"phong": RIGHT["phong"].replace(" / (distance ** 2)", "")},
+    "inverse_distance": {"phong": RIGHT["phong"].replace(" / (distance ** 2)", " / distance")},
+    # the grey of every ray, a miss's included, whose hit_distance is HUGEVALUE
+    "depth_of_misses_too": {"depth": "hit_data = self.scene.closest_hit(ray)\n"
+                                     "c = 1 - hit_data.hit_distance / self.max_depth\n"
+                                     "return RGBColor(c, c, c)\n"},
     # Hostile code, each in one step. The allocation takes memory that the system hands
     # out zeroed without touching it, so that it meets the memory limit long before the
     # limit of processor time, however loaded the machine.

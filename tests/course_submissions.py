@@ -530,7 +530,7 @@ FIXTURES = (
             # its Phong finds shadows with closest_hit, so only 1.2 depends on any_hit
             replace(RIGHT_2023, any_hit=ANY_HIT_FIRST_OBJECT_ONLY,
                     phong=PHONG_CLOSEST_HIT_DISTANCE),
-            {"1.2": "any_hit is wrong for 1 of 6 rays"}),
+            {"1.2": "any_hit is wrong for 2 of 12 rays"}),
     Fixture("no_ambient_2023", "2023-24", ("Phong without its ambient term",),
             replace(RIGHT_2023, phong=changed(PHONG_START_LIFTED_ALONG_NORMAL,
                                               "return ambient + diffuse", "return diffuse")),

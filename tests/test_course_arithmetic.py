@@ -14,7 +14,7 @@ from PyRT_Core import InfinitePlane, Parallelogram, Scene, Sphere
 from PyRT_Integrators import Integrator
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
-import practice1_checks as checks  # noqa: E402  (found through the line above)
+import practice1_render as render  # noqa: E402  (found through the line above)
 
 COURSE_SEAMS = course_kit.handout.REPO / "tests" / "data" / "course_figure1_seams.npz"
 SEAM_SAMPLE = 5  # every 5th of Figure 1's 6952 seam pixels: a second of rendering
@@ -60,8 +60,8 @@ def test_a_sphere_is_hit_at_its_near_side_then_from_inside_at_its_far_side():
 
 
 def test_away_from_the_edges_it_answers_as_pyrts_primitives():
-    scene = checks.cornell_box(40)
-    course = course_kit.arithmetic.with_course_arithmetic(checks.cornell_box(40))
+    scene = render.cornell_box(40)
+    course = course_kit.arithmetic.with_course_arithmetic(render.cornell_box(40))
     camera = scene.camera
     for y in range(0, 40, 3):
         for x in range(0, 40, 3):
@@ -76,8 +76,8 @@ def test_away_from_the_edges_it_answers_as_pyrts_primitives():
 def test_it_lets_the_rays_through_the_cornell_boxs_corners_at_40_pixels():
     # What the course's framework renders at 40 x 40: pixels (35, 4) and (4, 35) see the
     # background between two walls, where PyRT's edge tolerance closes the crack.
-    scene = checks.cornell_box(40)
-    course = course_kit.arithmetic.with_course_arithmetic(checks.cornell_box(40))
+    scene = render.cornell_box(40)
+    course = course_kit.arithmetic.with_course_arithmetic(render.cornell_box(40))
     for x, y in ((35, 4), (4, 35)):
         ray = Ray(Vector3D(0.0, 0.0, 0.0), scene.camera.get_direction(x, y))
         assert not Scene.closest_hit(course, ray).has_hit

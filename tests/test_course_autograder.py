@@ -13,6 +13,7 @@ import course_kit.autograder
 import course_kit.feedback
 import course_kit.grader
 import course_kit.handout
+import course_kit.sandbox
 import course_kit_students as students
 from helpers import REPO, SUBPROCESS_TIMEOUT, headless_env, run_python
 
@@ -42,10 +43,13 @@ def autograder_root(autograder_zip, root):
     return root
 
 
-def run_autograder(root, python=sys.executable):
-    """Runs root/run_autograder from root, with python (default: this one); returns
-    (results.json read, the CompletedProcess)."""
+def run_autograder(root, python=sys.executable, isolation=None):
+    """Runs root/run_autograder from root, with python (default: this one) and the
+    isolation named (default: the strongest that runs); returns (results.json read, the
+    CompletedProcess)."""
     environment = dict(headless_env(), AUTOGRADER_ROOT=str(root), AUTOGRADER_PYTHON=python)
+    if isolation is not None:
+        environment["AUTOGRADER_ISOLATION"] = isolation
     del environment["PYTHONPATH"]  # the grader runs from source/, not from the repository
     ran = subprocess.run([str(root / "run_autograder")], cwd=root, env=environment,
                          capture_output=True, text=True, timeout=SUBPROCESS_TIMEOUT)
@@ -123,7 +127,8 @@ def test_a_zip_with_its_modules_in_a_folder_and_extra_files_is_graded_as_grade_d
     assert_gradescopes_format(results)
     assert [test["score"] for test in results["tests"]] == [25, 25, 25, 0]
     assert "not divided by r^2" in results["tests"][3]["output"]
-    # The same submission graded by `grade`: the same results, but for the time it took
+    # The same submission graded by `grade`: the same verdicts, in the same format (the
+    # messages differ with the inputs each grading draws, and so does the time it took)
     folder = tmp_path / "submissions"
     students.write_submission(folder / "student", handout,
                               students.VARIANTS["no_inverse_square"])
@@ -132,6 +137,8 @@ def test_a_zip_with_its_modules_in_a_folder_and_extra_files_is_graded_as_grade_d
     local = course_kit.feedback.gradescope_results(record)
     for outcome in (results, local):
         del outcome["execution_time"]
+        for test in outcome["tests"]:
+            test["output"] = "not divided by r^2" in test["output"]
     assert results == local
 
 
@@ -203,3 +210,21 @@ def test_the_gradescope_table_sets_the_visibilities_of_results_json(tmp_path):
         course_kit.grader.load_config(path)
     assert str(error.value) == (f"{path}: [gradescope] may give only visibility, "
                                 "stdout_visibility")
+
+
+def test_run_autograder_refuses_process_isolation_unless_it_is_asked_for(
+        autograder_zip, handout, tmp_path, monkeypatch):
+    # Where neither bubblewrap nor an unprivileged user can run, the student's code would
+    # run as the grader's user, which keeps no secret from it
+    monkeypatch.setattr(course_kit.sandbox, "choose", lambda requested=None: (
+        course_kit.sandbox.Isolation("process", "asked for" if requested else
+                                     "no bubblewrap; no unprivileged user")))
+    root = autograder_root(autograder_zip, tmp_path)
+    for name in course_kit.handout.COURSE_MODULES:
+        shutil.copyfile(REPO / name, root / "submission" / name)
+    refused = course_kit.autograder.run(root)
+    assert refused["score"] == 0 and refused["tests"] == []
+    assert refused["output"].startswith("The autograder failed, and your course staff can "
+                                        "see why: IsolationUnavailable: neither bubblewrap "
+                                        "nor an unprivileged user can run here")
+    assert course_kit.autograder.run(root, isolation="process")["score"] == 100

@@ -2,6 +2,7 @@
 refuses (as macOS refuses one of the address space) and systems without the process
 limits and fork the grader needs (Windows), simulated on this one."""
 import json
+import random
 import re
 import shutil
 import subprocess
@@ -88,7 +89,8 @@ def test_with_the_address_space_limit_refused_a_right_submission_gets_every_poin
     config = course_kit.grader.load_config()
     # the process isolation: the server script above lies where a sandbox shows nothing
     records = course_kit.grader.grade_folder(submissions, tmp_path / "results", config, jobs=1,
-                                         progress=False, isolation="process")
+                                         progress=False, isolation="process",
+                                         draws=random.Random(4))
     refused = (f"memory_mib = {config.limits['memory_mib']} (RLIMIT_AS: ValueError: "
                f"{MACOS_REFUSAL})")
     for record in records:

@@ -5,6 +5,7 @@ import hashlib
 import html
 import html.parser
 import json
+import random
 import re
 import shutil
 import sys
@@ -21,6 +22,7 @@ import course_kit.feedback
 import course_kit.grader
 import course_kit.handout
 import course_kit.isolation
+import course_kit.judging
 import course_kit.references
 import course_kit_students as students
 from helpers import REPO, run_python
@@ -28,6 +30,7 @@ from PyRT_Common import Vector3D
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice1_checks as checks  # noqa: E402  (found through the line above)
+import practice1_render as render  # noqa: E402
 
 HANDOUT_FILES = [
     ".vscode/launch.json", ".vscode/settings.json", "AppRenderer.py", "PyRT_Common.py",
@@ -37,7 +40,8 @@ HANDOUT_FILES = [
     "pytest.ini", "references/figure1_phong.png", "references/figure2_lazy.png",
     "references/figure3_intersection.png", "references/figure4_depth.png",
     "references/figure4_normal.png", "references/figure5_phong.png", "requirements.txt",
-    "tests/expected/practice1.npz", "tests/practice1_checks.py", "tests/test_practice1.py"]
+    "tests/expected/practice1.npz", "tests/practice1_checks.py", "tests/practice1_render.py",
+    "tests/test_practice1.py"]
 CHECK_TESTS = {  # the students' tests, by the step in their names
     "test_assignment_1_1_lazy_image": "1.1", "test_assignment_1_2_any_hit": "1.2",
     "test_assignment_1_2_render_loop_rays": "1.2",
@@ -280,12 +284,12 @@ def test_the_expected_data_is_what_the_framework_renders():
 def test_the_checks_scenes_are_apprenderers():
     import AppRenderer
     from PyRT_Integrators import PhongIntegrator
-    for ours, theirs in ((checks.sphere_scene(), AppRenderer.sphere_test_scene(
-            width=checks.SIZE, height=checks.SIZE)), (checks.cornell_box(),
+    for ours, theirs in ((render.sphere_scene(), AppRenderer.sphere_test_scene(
+            width=render.SIZE, height=render.SIZE)), (render.cornell_box(),
                                                       AppRenderer.cornell_box_scene(
-                                                          0.75, 2, width=checks.SIZE,
-                                                          height=checks.SIZE))):
-        images = [checks.traced_image(PhongIntegrator("unused"), scene)
+                                                          0.75, 2, width=render.SIZE,
+                                                          height=render.SIZE))):
+        images = [render.traced_image(PhongIntegrator("unused"), scene)
                   for scene in (ours, theirs)]
         assert np.array_equal(*images)
         assert [type(obj) for obj in ours.object_list] == [type(obj)
@@ -336,6 +340,33 @@ def test_an_image_of_a_known_mistake_is_named():
     assert checks.likely_mistake(np.zeros((40, 40, 3)), "intersection", data) == (
         checks.BLACK_HINTS["intersection"])
     assert checks.likely_mistake(data["depth"] * 0.5, "depth", data) is None
+    # A depth left unclamped is named by its shape, whatever the grey of a miss: right
+    # where the expected grey is above 0, below 0 wherever it differs
+    for miss in (-np.inf, -199999.0):
+        unclamped = data["depth.mistake.unclamped_depth"].copy()
+        unclamped[np.all(data["depth"] == 0.0, axis=2) & np.all(unclamped == 0.0, axis=2)] = miss
+        assert checks.likely_mistake(unclamped, "depth", data) == (
+            checks.LIKELY["unclamped_depth"]), miss
+    assert checks.likely_mistake(-data["depth"], "depth", data) != (
+        checks.LIKELY["unclamped_depth"])  # wrong where the clamp changes nothing
+
+
+@pytest.mark.parametrize("exponent", [1.0, 1.5, 3.0])
+def test_a_lights_falloff_is_fitted_from_the_image_itself(exponent):
+    data = checks.expected_data()
+    image = render.traced_image(course_kit.references.PhongVariant("unused", falloff=exponent),
+                                render.sphere_scene())
+    assert checks.fitted_falloff(image, "phong_sphere", data) == pytest.approx(exponent,
+                                                                              abs=1e-6)
+    named = checks.likely_mistake(image, "phong_sphere", data)
+    assert named == (checks.LIKELY["inverse_distance"] if exponent == 1.0 else
+                     f"the light's contribution falls off as 1/r^{exponent:g}, where r is "
+                     "the distance from the point to the light and the falloff is 1/r^2: "
+                     "divide by r * r")
+    # Right, scaled, or wrong in another way, an image has no falloff of its own
+    for other in (data["phong_sphere"], image * 2.0,
+                  data["phong_sphere.mistake.no_shadows"]):
+        assert checks.fitted_falloff(other, "phong_sphere", data) is None
     probe = data["probe"].copy()
     probe[3, 4] = (-1.0, -1.0, -1.0)  # what RayProbe gives a ray from elsewhere
     assert checks.likely_mistake(probe, "probe", data) == checks.LIKELY["not_from_camera"]
@@ -389,9 +420,9 @@ def test_the_seams_of_the_cornell_box_take_the_background_the_courses_arithmetic
 
 
 def test_the_ray_probe_reads_the_numpy_arrays_of_the_2021_22_ray():
-    assert checks.components(np.array([0, 0, 0])) == (0.0, 0.0, 0.0)
-    assert checks.components(np.array([0.25, -1.0, 2.0])) == (0.25, -1.0, 2.0)
-    assert checks.components(Vector3D(1, 2, 3)) == (1.0, 2.0, 3.0)
+    assert render.components(np.array([0, 0, 0])) == (0.0, 0.0, 0.0)
+    assert render.components(np.array([0.25, -1.0, 2.0])) == (0.25, -1.0, 2.0)
+    assert render.components(Vector3D(1, 2, 3)) == (1.0, 2.0, 3.0)
 
 
 def test_a_passed_check_with_a_note_shows_it_without_marking_anything_wrong():
@@ -438,12 +469,14 @@ VERDICTS = {
     "upside_down": dict.fromkeys(("1.1", "1.2"), "upside down"),
     "transposed": dict.fromkeys(("1.1", "1.2"), "transposed"),
     "corner_rays": dict.fromkeys(("1.1", "1.2"), "top-left corners"),
-    "any_hit_first_object_only": {"1.2": "any_hit is wrong for 1 of 6 rays"},
+    "any_hit_first_object_only": {"1.2": "any_hit is wrong for 2 of 12 rays"},
     "unclamped_depth_and_no_ambient": {"1.3": "not clamped at 0",
                                        "1.4": "the ambient term, kd (x) i_a, is missing"},
     "unmapped_normals_and_no_shadows": {"1.3": "normals are not mapped to [0, 1]",
                                         "1.4": "there are no shadows"},
     "no_inverse_square": {"1.4": "not divided by r^2"},
+    "inverse_distance": {"1.4": "divided by r, the distance from the point to the light"},
+    "depth_of_misses_too": {"1.3": "the depth is not clamped at 0"},
     "raises": {"1.2": "raised ZeroDivisionError: float division by zero"},
     "calls_sys_exit": {"1.3": "your code called sys.exit(3)"},
     "calls_os_exit": {"1.3": "the process ended (exit code 7) before the checks were done"},
@@ -507,7 +540,7 @@ def graded(handout, tmp_path_factory):
     before = digest(folder)
     records = course_kit.grader.grade_folder(folder, results,
                                          course_kit.grader.load_config(config_path), jobs=2,
-                                         progress=False)
+                                         progress=False, draws=random.Random(1))
     return folder, before, results, {record["submission"]: record for record in records}, \
         outside, config_path
 
@@ -616,7 +649,7 @@ class Page(html.parser.HTMLParser):
 
 
 def test_the_feedback_page_shows_each_step_its_verdict_and_the_images(graded):
-    _, _, results, _, _, _ = graded
+    _, _, results, records, _, _ = graded
     page = Page((results / "unclamped_depth_and_no_ambient" / "feedback.html").read_text())
     assert page.headings[0] == ("Practice 1: unclamped_depth_and_no_ambient, 30 of 100.5 "
                                 "points")
@@ -629,7 +662,8 @@ def test_the_feedback_page_shows_each_step_its_verdict_and_the_images(graded):
                                "images/1.3_depth_difference.png"]
     for source in page.images:
         image = plt.imread(results / "unclamped_depth_and_no_ambient" / source)
-        assert image.shape[:2] == (checks.SIZE * checks.PNG_SCALE,) * 2
+        size = records["unclamped_depth_and_no_ambient"]["draw"]["size"]
+        assert image.shape[:2] == (size * checks.PNG_SCALE,) * 2
     assert "likely mistake: the depth is not clamped at 0" in "".join(page.text)
 
 
@@ -650,6 +684,10 @@ def test_a_wrong_phong_image_tells_its_first_wrong_pixel_beside_the_frameworks_s
     framework = page[page.index("The finished framework:"):]
     assert f"Pixel ({x}, {y}) of PhongIntegrator" in framework
     assert "blocked by object 0 (Sphere)" in framework
+    # What a light adds in the course's model is the grader's to tell: the student's
+    # story, told by the handout's pyrt/explain.py, has no model of Phong to say it with
+    assert "in the course's Phong model" in framework
+    assert "in the course's Phong model" not in check["story"]
     result = json.loads((results / "unmapped_normals_and_no_shadows" / course_kit.feedback.GRADESCOPE)
                         .read_text())
     assert check["story"] in result["tests"][3]["output"]  # the step of Phong, 1.4
@@ -695,7 +733,9 @@ def run_step_after(prelude, handout, tmp_path, wall_seconds, core=None):
     try:
         limits = {"cpu_seconds": 60, "wall_seconds": wall_seconds, "memory_mib": 2048,
                   "output_kib": 256}
-        return server.run_step(work, tmp_path, "1.1", limits)
+        task = {"kind": "collect", "names": ["lazy"], "draw": render.PUBLISHED,
+                "traced": False}
+        return server.run_step(work, tmp_path, "1.1", task, limits)
     finally:
         server.close()
 
@@ -730,6 +770,22 @@ def test_a_config_that_is_not_right_is_refused_with_the_reason(tmp_path, text, m
     with pytest.raises(ValueError) as error:
         course_kit.grader.load_config(path)
     assert str(error.value).startswith(f"{path}: ") and message in str(error.value)
+
+
+def test_the_grader_draws_inputs_the_handout_does_not_publish():
+    # The Lazy image and the rays of render() depend on the size alone: at the published
+    # size, handing back the published arrays would earn Assignment 1.1
+    draws = [course_kit.judging.draw_inputs(random.Random(seed)) for seed in range(200)]
+    sizes = {draw.size for draw, _ in draws}
+    assert render.SIZE not in sizes and len(sizes) > 10
+    assert all(draw.offset != (0.0, 0.0, 0.0) for draw, _ in draws)
+    # any_hit's answers follow neither from a case's place nor from what it is handed
+    patterns = {tuple(answer for _, _, answer in cases) for _, cases in draws}
+    assert len(patterns) > 50
+    for draw, cases in draws[:5]:
+        assert [case for _, case, _ in cases] == list(draw.any_hit)
+        assert all(isinstance(field, (tuple, float, type(None)))
+                   for case in draw.any_hit for field in case)
 
 
 def test_the_default_config_gives_25_points_a_step():

@@ -4,6 +4,7 @@ course_kit.grader and run through the students' checks in a handout. Each must g
 verdict a teaching assistant gives it, step by step: full points for a right one, and
 for a mistake a failure of exactly the steps it breaks, for the reason it is."""
 import json
+import random
 import shutil
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -49,7 +50,7 @@ def graded(real_submissions, tmp_path_factory):
     results = tmp_path_factory.mktemp("real_results")
     records = course_kit.grader.grade_folder(real_submissions, results,
                                          course_kit.grader.load_config(), jobs=2,
-                                         progress=False)
+                                         progress=False, draws=random.Random(2))
     return Graded(results, {record["submission"]: record for record in records})
 
 

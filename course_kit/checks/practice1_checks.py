@@ -3,8 +3,9 @@ and compared with the image that the finished framework renders.
 
 `python -m pytest` runs them from the folder of AppRenderer.py (tests/test_practice1.py
 holds one test per check, named after its assignment step). Each check builds the
-course's scenes itself, renders them at SIZE x SIZE pixels with your integrators and your
-render() loop, and compares the linear image (scene.rendered_image, what save_image writes
+course's scenes itself, renders them at 40 x 40 pixels with your integrators and your
+render() loop (practice1_render.py, which keeps what your code makes as plain data), and
+this module judges it: it compares the linear image (scene.rendered_image, what save_image writes
 to the .npy file) with the expected one in tests/expected/practice1.npz.
 
 The rule for a correct image: every channel of every pixel equals the expected value to
@@ -28,19 +29,17 @@ the expected one and their difference into out/checks/<check>/, names the mistak
 it recognises it, and tells the history of the first pixel that differs: every question
 your compute_color asked the scene there, and the answers (pyrt/explain.py).
 """
-import traceback
 from dataclasses import dataclass, field
-from math import sqrt
 from pathlib import Path
 
 import numpy as np
 from matplotlib.image import imsave
 
-SIZE = 40  # pixels, width and height of every image checked
+import practice1_render as render
+
 PROJECT = Path(__file__).resolve().parent.parent  # the folder of AppRenderer.py
 EXPECTED = Path(__file__).resolve().parent / "expected" / "practice1.npz"
 OUT = PROJECT / "out" / "checks"
-STUDENT_FILES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppRenderer.py")
 
 ABSOLUTE_TOLERANCE = 1e-9
 RELATIVE_TOLERANCE = 1e-6
@@ -49,6 +48,12 @@ SEAM_TOLERANCE = 1e-3  # relative: a colour this far from the expected one is an
 MISTAKE_SHARE = 1 / 20  # an image is taken for a known mistake when it differs at most here
 PNG_SCALE = 8  # the PNGs of a check show each pixel as a PNG_SCALE x PNG_SCALE square
 SHOWN_PIXELS = 3  # differing pixels listed in a message
+# A light's falloff is fitted from pixels whose distance to the light differs from 1 by
+# this much in log, at least this many of them, and taken when nine in ten of their
+# exponents lie within FALLOFF_SPREAD
+FALLOFF_MIN_LOG_R = 0.05
+FALLOFF_MIN_PIXELS = 20
+FALLOFF_SPREAD = 0.1
 
 
 # ------------------------------------------------------------------------------------------
@@ -56,29 +61,21 @@ SHOWN_PIXELS = 3  # differing pixels listed in a message
 # ------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Image:
-    """One image of the checks: the step it belongs to, what it shows, its scene and the
-    integrator (a class name of PyRT_Integrators, with its extra arguments) that renders
-    it. The "probe" image has no integrator of the course: RayProbe renders it."""
+    """One image of the checks: the step it belongs to and what it shows
+    (practice1_render.RENDERED says how it is rendered)."""
 
     step: str
     title: str
-    scene: str
-    integrator: str
-    arguments: tuple = ()
 
 
 IMAGES = {
-    "lazy": Image("1.1", "the Lazy image (Figure 2)", "sphere", "LazyIntegrator"),
-    "probe": Image("1.2", "the rays that render() traces", "sphere", "RayProbe"),
-    "intersection": Image("1.2", "the Intersection image (Figure 3)", "sphere",
-                          "IntersectionIntegrator"),
-    "depth": Image("1.3", "the Depth image, max_depth 5 (Figure 4)", "sphere",
-                   "DepthIntegrator", (5,)),
-    "normal": Image("1.3", "the Normal image (Figure 4)", "sphere", "NormalIntegrator"),
-    "phong_sphere": Image("1.4", "the Phong image of the sphere scene (Figure 5)", "sphere",
-                          "PhongIntegrator"),
-    "phong_cornell": Image("1.4", "the Phong image of the Cornell box (Figure 1)", "cornell",
-                           "PhongIntegrator"),
+    "lazy": Image("1.1", "the Lazy image (Figure 2)"),
+    "probe": Image("1.2", "the rays that render() traces"),
+    "intersection": Image("1.2", "the Intersection image (Figure 3)"),
+    "depth": Image("1.3", "the Depth image, max_depth 5 (Figure 4)"),
+    "normal": Image("1.3", "the Normal image (Figure 4)"),
+    "phong_sphere": Image("1.4", "the Phong image of the sphere scene (Figure 5)"),
+    "phong_cornell": Image("1.4", "the Phong image of the Cornell box (Figure 1)"),
 }
 # The checks of each step, in order: the names of IMAGES, and "any_hit"
 STEPS = {
@@ -92,8 +89,8 @@ STEPS = {
 RENDERED_MISTAKES = {
     "depth": ("unclamped_depth",),
     "normal": ("unmapped_normals",),
-    "phong_sphere": ("no_ambient", "no_shadows", "no_inverse_square"),
-    "phong_cornell": ("no_ambient", "no_shadows", "no_inverse_square"),
+    "phong_sphere": ("no_ambient", "no_shadows", "no_inverse_square", "inverse_distance"),
+    "phong_cornell": ("no_ambient", "no_shadows", "no_inverse_square", "inverse_distance"),
 }
 LIKELY = {
     "green": "every pixel is GREEN: render() still paints the handout's GREEN. Assignment "
@@ -114,7 +111,9 @@ LIKELY = {
                    "centre of pixel (x, y)",
     "unclamped_depth": "the depth is not clamped at 0: beyond max_depth the grey "
                        "1 - hit_distance / max_depth is negative, and the formula takes the "
-                       "larger of it and 0",
+                       "larger of it and 0 (for a ray that hits nothing, hit_distance is "
+                       "HUGEVALUE or infinite, so its grey is far below 0 unless clamped "
+                       "or coloured BLACK)",
     "unmapped_normals": "the normals are not mapped to [0, 1]: the colour is the normal "
                         "itself, whose components lie in [-1, 1], where the formula is "
                         "(n + (1, 1, 1)) / 2",
@@ -123,6 +122,8 @@ LIKELY = {
                   "between the point and the light (a shadow ray and scene.any_hit tell)",
     "no_inverse_square": "the light's contribution is not divided by r^2, the squared "
                          "distance from the point to the light",
+    "inverse_distance": "the light's contribution is divided by r, the distance from the "
+                        "point to the light, where the falloff is 1/r^2: divide by r * r",
 }
 BLACK_HINTS = {
     "lazy": "the image is black: LazyIntegrator.compute_color returns BLACK, so in "
@@ -179,6 +180,7 @@ class Check:
         return "\n".join(parts)
 
 
+
 def title(name):
     return "any_hit, tested on its own" if name == "any_hit" else IMAGES[name].title
 
@@ -187,23 +189,28 @@ def step_of(name):
     return "1.2" if name == "any_hit" else IMAGES[name].step
 
 
+def ray_traced(name):
+    """Whether the image `name` is one of an integrator that traces rays (the Lazy image
+    and the probe's have no rays of the course's)."""
+    return name not in ("lazy", "probe")
+
+
 # ------------------------------------------------------------------------------------------
-# Running a check
+# Running a check: your code renders (practice1_render.py), then the check judges
 # ------------------------------------------------------------------------------------------
 def run_check(name, out=OUT):
-    """The Check called `name` (any_hit or a name of IMAGES), run on the student's modules;
-    its PNGs go into out/<name>/. Errors of the student's code become the check's verdict."""
-    check = Check(name, step_of(name), title(name))
-    folder = Path(out) / name
-    try:
-        if name == "any_hit":
-            return _check_any_hit(check)
-        return _check_image(check, folder)
-    except KeyboardInterrupt:
-        raise
-    except BaseException as error:  # SystemExit too: the student's code called sys.exit
-        check.error = student_traceback(error)
-        return check.fail(_error_reason(error))
+    """The Check called `name` (any_hit or a name of IMAGES), run on the student's modules
+    with the published draw; its PNGs go into out/<name>/."""
+    data = expected_data()
+    rendered = render.collect(name, render.PUBLISHED, out)
+    probe = render.collect("probe", render.PUBLISHED, Path(out) / "lazy_loop") if (
+        name == "lazy" and "image" in rendered.arrays
+        and not np.any(rendered.arrays["image"])) else None
+    check = judge_rendered(rendered, data, render.PUBLISHED_CASES, Path(out) / name, probe)
+    if check.story_pixel:
+        check.story = story(check, data[name], render.pixel_history(
+            name, render.PUBLISHED, *check.story_pixel))
+    return check
 
 
 def run_step(step, out=OUT):
@@ -211,294 +218,104 @@ def run_step(step, out=OUT):
     return [run_check(name, out) for name in STEPS[step]]
 
 
-def _error_reason(error):
-    if isinstance(error, SystemExit):
-        return f"your code called sys.exit({error.code!r}), which ends the program"
-    if isinstance(error, MemoryError):
+def error_reason(error):
+    """The one-line reason of a check whose code raised error (practice1_render's
+    describe_error)."""
+    if error["kind"] == "SystemExit":
+        return f"your code called sys.exit({error.get('code', 'None')}), which ends the program"
+    if error["kind"] == "MemoryError":
         return "your code ran out of memory"
-    if isinstance(error, SyntaxError):
-        where = f"{Path(error.filename or '?').name}, line {error.lineno}"
-        return f"{where} is not valid Python: {error.msg}"
-    reason = f"your code raised {type(error).__name__}: {error}"
-    if "None" in str(error):
+    if error["kind"] == "SyntaxError":
+        return (f"{error.get('file', '?')}, line {error.get('line', '?')} is not valid "
+                f"Python: {error['text']}")
+    reason = f"your code raised {error['type']}: {error['text']}"
+    if "None" in error["text"]:
         reason += (" (a compute_color that still is the handout's `pass` returns None, "
                    "where an RGBColor is needed)")
     return reason
 
 
-def student_traceback(error):
-    """The lines of the error's traceback that lie in the student's files (the four
-    course modules beside tests/), each file named as in the student's folder, then the
-    error itself."""
-    frames = [traceback.FrameSummary(Path(frame.filename).name, frame.lineno, frame.name,
-                                     line=frame.line)
-              for frame in traceback.extract_tb(error.__traceback__)
-              if Path(frame.filename).name in STUDENT_FILES
-              and Path(frame.filename).resolve().parent == PROJECT]
-    lines = traceback.format_list(frames)
-    if isinstance(error, SyntaxError) and error.text:
-        lines.append(f'  File "{Path(error.filename or "?").name}", line {error.lineno}\n'
-                     f"    {error.text.strip()}\n")
-    return "".join(lines) + "".join(traceback.format_exception_only(type(error), error))
-
-
-def course_modules():
-    """The student's PyRT_Common, PyRT_Core and PyRT_Integrators, imported."""
-    import PyRT_Common
-    import PyRT_Core
-    import PyRT_Integrators
-    return PyRT_Common, PyRT_Core, PyRT_Integrators
-
-
-# ------------------------------------------------------------------------------------------
-# The scenes, built through the course's API
-# ------------------------------------------------------------------------------------------
-def sphere_scene(size=SIZE):
-    """The sphere scene of Figures 2 to 5: a grey sphere above a green floor, one light."""
-    common, core, _ = course_modules()
-    Vector3D, RGBColor = common.Vector3D, common.RGBColor
-    scene = core.Scene()
-    scene.set_ambient(RGBColor(0.5, 0.5, 0.5))
-    sphere = core.Sphere(Vector3D(0.0, 0.0, -5.0), 2.0)
-    sphere.set_BRDF(core.Lambertian(RGBColor(0.8, 0.8, 0.8)))
-    scene.add_object(sphere)
-    floor = core.Parallelogram(Vector3D(-4.0, -2.0, -1.0), Vector3D(8.0, 0.0, 0.0),
-                               Vector3D(0.0, 0.0, -8.0))
-    floor.set_BRDF(core.Lambertian(RGBColor(0.2, 0.8, 0.2)))
-    scene.add_object(floor)
-    scene.add_point_light_sources(core.PointLight(Vector3D(0.0, 5.0, 0.0),
-                                                  RGBColor(80.0, 80.0, 80.0)))
-    scene.set_camera(core.Camera(size, size, 60))
-    return scene
-
-
-def cornell_box(size=SIZE, dist=0.75, side=2.0):
-    """The Cornell box of Figure 1: a blue sphere in a white box with a red left wall and a
-    green right wall, three lights under the ceiling."""
-    common, core, _ = course_modules()
-    Vector3D, RGBColor = common.Vector3D, common.RGBColor
-    scene = core.Scene()
-    scene.set_ambient(RGBColor(1.0, 1.0, 0.3))
-    white = RGBColor(0.8, 0.8, 0.8)
-    z_far = -(dist + side)
-    ll = Vector3D(-side / 2, -side / 2, z_far)
-    ur = Vector3D(side / 2, side / 2, z_far)
-    objects = [
-        (core.Sphere(Vector3D(0.0, 0.0, -(dist + side / 2)), 0.25), RGBColor(0.2, 0.2, 0.7)),
-        (core.Parallelogram(ll, Vector3D(side, 0, 0), Vector3D(0, side, 0)), white),
-        (core.Parallelogram(ll, Vector3D(side, 0, 0), Vector3D(0, 0, side)), white),
-        (core.Parallelogram(ll, Vector3D(0, side, 0), Vector3D(0, 0, side)),
-         RGBColor(0.7, 0.2, 0.2)),
-        (core.Parallelogram(ur, Vector3D(-side, 0, 0), Vector3D(0, 0, side)), white),
-        (core.Parallelogram(ur, Vector3D(0, -side, 0), Vector3D(0, 0, side)),
-         RGBColor(0.2, 0.7, 0.2)),
-    ]
-    for obj, colour in objects:
-        obj.set_BRDF(core.Lambertian(colour))
-        scene.add_object(obj)
-    for x in (0.0, -side / 4, side / 4):
-        scene.add_point_light_sources(core.PointLight(
-            Vector3D(x, side / 2 - 0.5, -(dist + side / 2)), RGBColor(0.5, 0.5, 0.5)))
-    scene.set_camera(core.Camera(size, size, 70))
-    return scene
-
-
-SCENES = {"sphere": sphere_scene, "cornell": cornell_box}
-
-
-def ray_probe(integrators):
-    """A subclass of integrators.Integrator (so with its render()) that colours each pixel
-    by the ray render() hands to compute_color: its unit direction d as (d + 1) / 2, or
-    (-1, -1, -1) when the ray does not start at the camera, (0, 0, 0)."""
-    RGBColor = course_modules()[0].RGBColor
-
-    class RayProbe(integrators.Integrator):
-        def __init__(self, filename_):
-            super().__init__(filename_ + "_RayProbe")
-
-        def compute_color(self, ray):
-            if components(ray.o) != (0.0, 0.0, 0.0):
-                return RGBColor(-1.0, -1.0, -1.0)
-            x, y, z = components(ray.d)
-            length = sqrt(x * x + y * y + z * z)
-            return RGBColor((x / length + 1) / 2, (y / length + 1) / 2, (z / length + 1) / 2)
-
-    return RayProbe
-
-
-def components(vector):
-    """(x, y, z) of a Vector3D, or of a numpy array of three numbers: the 2021-22 base
-    code's Ray() starts with arrays for its origin and direction."""
-    if hasattr(vector, "x"):
-        return float(vector.x), float(vector.y), float(vector.z)
-    x, y, z = (float(value) for value in vector)
-    return x, y, z
-
-
-def make_integrator(name, filename, integrators):
-    """The integrator of IMAGES[name], from the module `integrators`."""
-    image = IMAGES[name]
-    if image.integrator == "RayProbe":
-        return ray_probe(integrators)(filename)
-    return getattr(integrators, image.integrator)(filename, *image.arguments)
-
-
-def traced_image(integrator, scene, offset=(0.0, 0.0)):
-    """The image of integrator.compute_color for a ray from the camera through each
-    pixel's centre moved by offset = (dx, dy) pixels, traced here, one pixel at a time,
-    instead of by the integrator's render()."""
-    common = course_modules()[0]
-    integrator.add_scene(scene)
-    camera = scene.camera
-    image = np.zeros((camera.height, camera.width, 3))
-    dx, dy = offset
-    for y in range(camera.height):
-        for x in range(camera.width):
-            direction = camera.get_direction(x + dx, y + dy)
-            color = integrator.compute_color(common.Ray(common.Vector3D(0.0, 0.0, 0.0),
-                                                        direction))
-            image[y, x] = (color.r, color.g, color.b)
-    return image
-
-
-def judge_compute_color(integrator, name, data):
-    """The Verdict on the image of IMAGES[name] traced by traced_image with the student's
-    compute_color on a fresh scene; None when that cannot be traced (compute_color
-    raises or returns something else than a colour)."""
-    try:
-        image = traced_image(integrator, SCENES[IMAGES[name].scene]())
-    except Exception:  # the student's render() was judged; this only looks further
-        return None
-    return judge(image, name, data)
-
-
-def render(integrator, scene):
-    """Renders scene with the integrator's own render() and returns a copy of the linear
-    image."""
-    integrator.add_scene(scene)
-    integrator.render()
-    return np.array(scene.rendered_image, dtype=float)
-
-
-# ------------------------------------------------------------------------------------------
-# The checks
-# ------------------------------------------------------------------------------------------
-def _check_any_hit(check):
-    common, core, _ = course_modules()
-    Vector3D = common.Vector3D
-    origin, ahead = Vector3D(0.0, 0.0, 0.0), Vector3D(0.0, 0.0, -1.0)
-
-    def scene_of(*centres):
-        scene = core.Scene()
-        for centre in centres:
-            scene.add_object(core.Sphere(Vector3D(*centre), 1.0))
-        return scene
-
-    def ray(direction=ahead, t_min=None, t_max=None):
-        r = common.Ray(Vector3D(origin.x, origin.y, origin.z),
-                       Vector3D(direction.x, direction.y, direction.z))
-        if t_min is not None:
-            r.t_min = t_min
-        if t_max is not None:
-            r.t_max = t_max
-        return r
-
-    one, two = (0.0, 0.0, -5.0), (3.0, 0.0, -5.0)  # unit spheres; the ray ahead misses two
-    cases = [
-        ("a ray from the camera straight at a sphere 4 to 6 away", scene_of(one), ray(), True),
-        ("a ray pointing away from every object", scene_of(one),
-         ray(Vector3D(0.0, 0.0, 1.0)), False),
-        ("a ray towards the sphere with t_max 3, ending before it", scene_of(one),
-         ray(t_max=3.0), False),
-        ("a ray towards the sphere with t_min 7, starting beyond it", scene_of(one),
-         ray(t_min=7.0), False),
-        ("a ray towards the sphere with t_min 5, which meets its far side at 6",
-         scene_of(one), ray(t_min=5.0), True),
-        ("a ray that misses the first object of object_list and hits the second",
-         scene_of(two, one), ray(), True),
-    ]
-    wrong = []  # (description, the right answer)
-    for description, scene, case_ray, expected in cases:
-        answer = scene.any_hit(case_ray)
-        if not isinstance(answer, (bool, np.bool_)):
-            return check.fail(f"any_hit returned {answer!r} for {description}; it must "
-                              "return True or False")
-        if answer != expected:
-            wrong.append((description, expected))
-    if not wrong:
-        return check.succeed()
-    reason = f"any_hit is wrong for {len(wrong)} of {len(cases)} rays"
-    if [case for case in cases if case[3]] == [case for case in cases if (case[0], True)
-                                               in wrong]:
-        reason += " (it answers False for every ray that hits, as the handout's any_hit does)"
-    return check.fail(reason, "\n".join(
-        f"  {description}: any_hit answered {not expected}, the right answer is {expected}"
-        for description, expected in wrong))
-
-
-def _check_image(check, folder):
-    common, core, integrators = course_modules()
-    image_info = IMAGES[check.name]
-    # The course's save_image writes into the folder it is given and creates none
-    folder.mkdir(parents=True, exist_ok=True)
-    scene = SCENES[image_info.scene]()
-    integrator = make_integrator(check.name, str(folder / "render"), integrators)
-    if image_info.integrator not in ("LazyIntegrator", "RayProbe"):
-        integrator.add_scene(scene)
-        color = integrator.compute_color(common.Ray(common.Vector3D(0.0, 0.0, 0.0),
-                                                    common.Vector3D(0.0, 0.0, -1.0)))
-        if not all(hasattr(color, channel) for channel in "rgb"):
-            stub = " (the handout's `pass` returns None)" if color is None else ""
-            return check.fail(f"{image_info.integrator}.compute_color returned {color!r}"
-                              f"{stub} for a ray from the camera straight at the sphere; it "
-                              "must return an RGBColor")
-    image = render(integrator, scene)
-    data = expected_data()
+def judge_rendered(rendered, data, cases, folder, probe=None):
+    """The Check of what the student's code made for one check (a practice1_render
+    Rendered), judged against data, the expected data of its draw, and cases, the draw's
+    any_hit cases with their right answers. Its PNGs go into folder;
+    probe: the Rendered of the ray probe, for a black Lazy image. A wrong image gets
+    story_pixel, the first wrong pixel, whose story is told by another run of the
+    student's code."""
+    check = Check(rendered.name, step_of(rendered.name), title(rendered.name))
+    if rendered.error is not None:
+        check.error = rendered.error["traceback"]
+        return check.fail(error_reason(rendered.error))
+    if rendered.name == "any_hit":
+        return _judge_any_hit(check, rendered, cases)
+    if rendered.first_color is not None:
+        stub = " (the handout's `pass` returns None)" if rendered.first_color == "None" else ""
+        return check.fail(f"{render.RENDERED[rendered.name][1]}.compute_color returned "
+                          f"{rendered.first_color}{stub} for a ray from the camera straight "
+                          "at the sphere; it must return an RGBColor")
+    if "image" not in rendered.arrays:
+        return check.fail("no image came back from render()")
+    image = rendered.arrays["image"]
     verdict = judge(image, check.name, data)
     if verdict.right:
         return check.succeed(verdict.note)
     reason = verdict.reason
-    if image_info.integrator not in ("LazyIntegrator", "RayProbe"):
+    if ray_traced(check.name) and "traced" in rendered.arrays:
         # A mistake of render() shows in every image it makes, but the check of its rays
         # (Assignment 1.2) is where it counts: here compute_color is judged on its own
-        own_rays = judge_compute_color(integrator, check.name, data)
-        if own_rays is not None and own_rays.right:
+        own_rays = judge(rendered.arrays["traced"], check.name, data)
+        if own_rays.right:
             return check.succeed(
                 "compute_color is right: the image that your render() makes differs ("
                 + reason + "), which the check of render()'s rays in Assignment 1.2 "
                 "counts, not this one" + (f"; {own_rays.note}" if own_rays.note else ""))
-    if check.name == "lazy" and not np.any(image):
+    if check.name == "lazy" and not np.any(image) and probe is not None:
         # LazyIntegrator.compute_color returns BLACK: once render() asks compute_color
         # (Assignment 1.2), the Lazy image is black, and 1.1 lives on in 1.2's loop
-        probe = run_check("probe", folder.parent / "lazy_loop")
-        if probe.passed:
+        loop = judge_rendered(probe, data, cases, folder.parent / "lazy_loop")
+        if loop.passed:
             return check.succeed("LazyIntegrator renders black because render() now asks "
                                  "compute_color, as Assignment 1.2 asks; its loop is the "
                                  "loop of 1.1, finished")
         reason = ("the image is black, which is right once render() asks compute_color "
                   "(Assignment 1.2), but render() fails the check of its rays: "
-                  + probe.reason)
+                  + loop.reason)
     check.images = write_pngs(folder, image, data[check.name], verdict.wrong)
-    if image_info.integrator not in ("LazyIntegrator", "RayProbe"):  # no rays of their own
-        tell_first_wrong_pixel(check, integrator, verdict.wrong, data[check.name])
+    if ray_traced(check.name):
+        y, x = (int(i) for i in np.argwhere(verdict.wrong)[0])
+        check.story_pixel = (x, y)
     return check.fail(reason, verdict.details)
 
 
-def tell_first_wrong_pixel(check, integrator, wrong, expected):
-    """Sets check.story to the history of the first wrong pixel (in reading order) as the
-    student's integrator tells it, with the colour expected there. A story that cannot be
-    told (no pyrt/explain.py beside the modules, a scene it cannot read) is left out: it
-    never changes the verdict."""
-    y, x = (int(i) for i in np.argwhere(wrong)[0])
-    try:
-        from pyrt.explain import explain_pixel
-        history = explain_pixel(integrator, x, y)
-    except Exception:
-        return
-    check.story_pixel = (x, y)
-    check.story = (f"Pixel ({x}, {y}) is the first that differs; the expected colour there "
-                   f"is {_rgb(expected[y, x])}. What your code asked and was answered:\n"
-                   f"{history}")
+def _judge_any_hit(check, rendered, cases):
+    answers = [int(answer) for answer in rendered.arrays.get("answers", ())]
+    if rendered.not_bool is not None:
+        description, _, _ = cases[max(0, min(len(answers), len(cases)) - 1)]
+        return check.fail(f"{rendered.not_bool} for {description}; it must return "
+                          "True or False")
+    if len(answers) != len(cases):
+        return check.fail(f"any_hit gave {len(answers)} answers to {len(cases)} rays")
+    wrong = [(description, right) for (description, _, right), answer
+             in zip(cases, answers) if bool(answer) != right]
+    if not wrong:
+        return check.succeed()
+    reason = f"any_hit is wrong for {len(wrong)} of {len(cases)} rays"
+    if [case for case, _, right in cases if right] == [case for case, right in wrong if right]:
+        reason += " (it answers False for every ray that hits, as the handout's any_hit does)"
+    return check.fail(reason, "\n".join(
+        f"  {description}: any_hit answered {not right}, the right answer is {right}"
+        for description, right in wrong))
+
+
+def story(check, expected, history):
+    """The story of check's first wrong pixel: the colour expected there, then history,
+    what the student's code asked and was answered there ("" when it could not be told)."""
+    if not history:
+        return ""
+    x, y = check.story_pixel
+    return (f"Pixel ({x}, {y}) is the first that differs; the expected colour there "
+            f"is {_rgb(expected[y, x])}. What your code asked and was answered:\n"
+            f"{history}")
 
 
 # ------------------------------------------------------------------------------------------
@@ -520,11 +337,23 @@ def close(image, expected, relative=RELATIVE_TOLERANCE):
 def right_pixels(image, name, data):
     """Per pixel: whether image is right there, by the rule of this module's docstring."""
     right = close(image, data[name])
-    for (y, x), colours in zip(data[f"{name}.seam_pixels"], data[f"{name}.seam_colors"]):
-        if not right[y, x]:
-            right[y, x] = bool(close(np.broadcast_to(image[y, x], colours.shape)[None],
-                                     colours[None], SEAM_TOLERANCE).any())
+    if right.all():
+        return right
+    for (y, x), colours in seams_among(data, name, ~right):
+        right[y, x] = bool(close(np.broadcast_to(image[y, x], colours.shape)[None],
+                                 colours[None], SEAM_TOLERANCE).any())
     return right
+
+
+def seams_among(data, name, pixels):
+    """[((y, x), the colours its rays may see)] of the seam pixels of the image `name`
+    where the mask `pixels` is True: from data's seams_at where it has one (the grader's
+    expected data, made at grading time, works them out when asked), else stored."""
+    if hasattr(data, "seams_at"):
+        return data.seams_at(name, pixels)
+    return [((y, x), colours) for (y, x), colours
+            in zip(data[f"{name}.seam_pixels"], data[f"{name}.seam_colors"])
+            if pixels[y, x]]
 
 
 @dataclass
@@ -611,6 +440,12 @@ def likely_mistake(image, name, data):
     if name == "probe" and np.any(np.all(image == -1.0, axis=2)):
         return LIKELY["not_from_camera"]
     expected = data[name]
+    if name == "depth" and unclamped_shape(image, expected):
+        return LIKELY["unclamped_depth"]
+    if name == "phong_sphere":
+        exponent = fitted_falloff(image, name, data)
+        if exponent is not None:
+            return falloff_mistake(exponent)
     candidates = {"upside_down": expected[::-1], "mirrored": expected[:, ::-1],
                   "transposed": expected.transpose(1, 0, 2)}
     if name != "lazy" and "lazy" in data:
@@ -623,6 +458,55 @@ def likely_mistake(image, name, data):
         if (~close(image, candidate)).sum() <= allowed:
             return LIKELY[mistake]
     return None
+
+
+def fitted_falloff(image, name, data):
+    """The exponent p of a Phong image of one light whose light falls off as 1/r^p, fitted
+    from the image itself, when it has that shape and p is not the course's 2; else None.
+    The expected data tells, per pixel, the ambient term A (expected minus the image
+    without ambient), the light's part at r^2 (the image without ambient) and at r^0 (the
+    image without the division, minus A), so r^2 is their ratio; where the light is
+    blocked the image must be the expected one."""
+    expected = data[name]
+    at_r2 = data[f"{name}.mistake.no_ambient"]
+    ambient = expected - at_r2
+    at_r0 = data[f"{name}.mistake.no_inverse_square"] - ambient
+    lit = (at_r2 > ABSOLUTE_TOLERANCE) & (at_r0 > ABSOLUTE_TOLERANCE)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_r = 0.5 * np.log(at_r0 / at_r2)
+        own = image - ambient
+        usable = lit & (own > ABSOLUTE_TOLERANCE) & (np.abs(log_r) > FALLOFF_MIN_LOG_R)
+        if usable.sum() < FALLOFF_MIN_PIXELS or not close(
+                image, expected)[~lit.any(axis=2)].all():
+            return None
+        exponents = np.log(at_r0[usable] / own[usable]) / log_r[usable]
+    low, exponent, high = np.percentile(exponents, (10, 50, 90))
+    if not np.isfinite(exponent) or high - low > FALLOFF_SPREAD or abs(exponent - 2) < (
+            FALLOFF_SPREAD):
+        return None
+    return float(exponent)
+
+
+def falloff_mistake(exponent):
+    """The mistake of a light falling off as 1/r^exponent, in the words of LIKELY."""
+    for mistake, p in (("no_inverse_square", 0), ("inverse_distance", 1)):
+        if abs(exponent - p) < FALLOFF_SPREAD:
+            return LIKELY[mistake]
+    return (f"the light's contribution falls off as 1/r^{exponent:.2g}, where r is the "
+            "distance from the point to the light and the falloff is 1/r^2: divide by "
+            "r * r")
+
+
+def unclamped_shape(image, expected):
+    """Whether a Depth image has the shape of a depth left unclamped, whatever a miss's
+    hit_distance: right wherever the expected grey is above 0 (where the clamp changes
+    nothing), and below 0 (-inf included) wherever it differs there."""
+    shows = expected.max(axis=2) <= 0.0  # where the clamp decides
+    wrong = ~close(image, expected)
+    if not shows.any() or (wrong & ~shows).any() or not (wrong & shows).any():
+        return False
+    with np.errstate(invalid="ignore"):
+        return bool(np.all(image[wrong & shows] < 0.0))
 
 
 def write_pngs(folder, image, expected, wrong):
