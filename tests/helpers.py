@@ -193,6 +193,32 @@ class StudentPhongIntegrator(Integrator):
         return color
 
 
+class ShadowRayFrom(Integrator):
+    """The course's Phong, its shadow ray Ray(hit_point, wi, distance) with t_min set to
+    `t_min`: 0 leaves out the offset that keeps the ray off its own surface."""
+
+    def __init__(self, t_min):
+        super().__init__("unused")
+        self.t_min = t_min
+
+    def compute_color(self, ray):
+        hit = self.scene.closest_hit(ray)
+        if not hit.has_hit:
+            return RGBColor(0.0, 0.0, 0.0)
+        brdf = self.scene.object_list[hit.primitive_index].get_BRDF()
+        color = brdf.kd.multiply(self.scene.i_a)
+        for light in self.scene.pointLights:
+            to_light = light.pos - hit.hit_point
+            distance = Length(to_light)
+            wi = Normalize(to_light)
+            shadow = Ray(hit.hit_point, wi, distance)
+            shadow.t_min = self.t_min
+            if not self.scene.any_hit(shadow):
+                f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
+                color = color + light.intensity.multiply(f) / (distance * distance)
+        return color
+
+
 def visible_lights(scene, hit):
     """The point lights that light the point of hit (a HitData) as PhongIntegrator decides
     it: each light in front of the surface, n . (pos - p) > 0, whose shadow_ray meets
