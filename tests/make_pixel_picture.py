@@ -2,9 +2,10 @@
 
 The pixel is (436, 420) of a student's Phong image of the sphere scene (500 x 500), a dark
 speckle on the floor: the student's shadow ray starts on the surface (t_min = 0), meets
-the floor it leaves at distance 0 and hides the light, shadow acne. The README prints the
-story of the same pixel; both come from explain_pixel, so run this again when the picture
-or the story changes, look at the new picture, and say why in the commit message.
+the floor it leaves at distance 0 and hides the light, shadow acne. docs/working-with-pyrt.md
+quotes the story of the same pixel, which this prints; both come from explain_pixel, so run
+this again when the picture or the story changes, look at the new picture, and say why in
+the commit message.
 
 Run it from the repository's root folder:
 
