@@ -5,6 +5,7 @@ tan(fov/2) = 1: pixel (x, y) of a width x height image looks along
 (x_s * width/height, y_s, -1) with x_s = 2(x + 0.5)/width - 1 and y_s = 1 - 2(y + 0.5)/height.
 The centre pixel of an image with odd sides looks straight down -z."""
 import math
+import multiprocessing
 import os
 import subprocess
 import sys
@@ -240,10 +241,21 @@ def visible_lights(scene, hit):
     return seen
 
 
-def wait_for_file(path, seconds=60):
-    """Waits until another process has made the file at path (at most `seconds`)."""
+def wait_for_file(path, seconds=SUBPROCESS_TIMEOUT):
+    """Waits until another process has made the file at path; `seconds` is only there so
+    that a process that hangs cannot hang the suite."""
     deadline = time.monotonic() + seconds
     while not os.path.exists(path) and time.monotonic() < deadline:
+        time.sleep(0.005)
+
+
+def wait_for_worker(path, seconds=SUBPROCESS_TIMEOUT):
+    """Waits until a worker process of this one has made the file at path, or none is alive
+    any more (it stopped, or could not start): however late a loaded machine starts it.
+    `seconds` is only there so that a worker that hangs cannot hang the suite."""
+    deadline = time.monotonic() + seconds
+    while (not os.path.exists(path) and multiprocessing.active_children()
+           and time.monotonic() < deadline):
         time.sleep(0.005)
 
 
