@@ -16,6 +16,7 @@ from PyRT_Common import COURSE_ENV_MAP
 from pyrt.compare import REFERENCE_SIZE, compare_figures, write_sheet
 from pyrt.explain import explain_pixel
 from pyrt.explain_picture import save_picture
+from pyrt.images import opencv_problem
 # FRAMEWORK ONLY BEGIN
 from pyrt.sampling import ADAPTIVE_TOLERANCE
 # FRAMEWORK ONLY END
@@ -465,7 +466,14 @@ def render_options(args):
 
 
 def main(argv=None):
+    """Runs the command line argv (sys.argv's by default) and returns the exit status."""
     args = parse_args(argv)
+    problem = opencv_problem()
+    if problem:
+        # Said as a bad option is said, without a traceback: the fix is all a student needs
+        # here. A script that calls Integrator.render() gets it as a RuntimeError.
+        print(f"{Path(sys.argv[0]).name}: error: {problem}", file=sys.stderr)
+        return 1
     base = str(Path(args.out) / FILENAME)
     if args.all_figures:
         jobs = [(figure_integrator(entry, base), SCENES[entry[2]]) for entry in FIGURES]

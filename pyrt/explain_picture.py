@@ -23,6 +23,12 @@ VIEWS = (("side view", (2, 1), "z (the camera looks towards -z)", "y (up)"),
          ("top view", (2, 0), "z (the camera looks towards -z)", "x (to the image's right)"))
 COLORS = {"object": "0.35", "camera": "tab:blue", "normal": "tab:purple",
           "visible": "tab:green", "blocked": "tab:red", "light": "orange"}
+# The colour of each kind of label; a label merged from several kinds is black
+LABEL_COLORS = {"object": COLORS["object"], "camera": COLORS["camera"], "light": "black",
+                "acne": COLORS["blocked"]}
+# Labels of points closer than this fraction of a view's extent are written as one label,
+# "camera, light 0": written apart they would be printed over each other
+LABEL_MERGE_FRACTION = 0.03
 
 
 def save_picture(history: PixelHistory, scene, path) -> Path:
@@ -77,38 +83,72 @@ def _add(a, b):
 
 
 def _draw_view(ax, history, shapes, lights, axes_of):
+    """Draws one view: the components axes_of = (horizontal, vertical) of everything."""
     h, v = axes_of
 
     def flat(p):
         return p[h], p[v]
 
+    # (point, kind, text), written once everything is drawn; the objects' numbers last, so
+    # that a label merged with one stands at its point, not at the object's centre
+    numbers = []
     for shape in shapes:
         if shape[0] == "sphere":
             _, index, centre, radius = shape
             ax.add_patch(Circle(flat(centre), radius, fill=False, color=COLORS["object"]))
-            label_at = flat(centre)
+            numbers.append((flat(centre), "object", str(index)))
         else:
             _, index, corners = shape
             outline = [flat(c) for c in corners]
             ax.add_patch(Polygon(outline, closed=True, fill=False, color=COLORS["object"]))
             # A polygon seen face on covers the others' labels: only edge-on ones get one
-            label_at = None if _area(outline) > 1e-9 else tuple(
-                sum(c) / 4 for c in zip(*outline))
-        if label_at is not None:
-            ax.annotate(str(index), label_at, color=COLORS["object"], fontsize=9,
-                        ha="center", va="center",
-                        bbox={"boxstyle": "round", "fc": "white", "ec": "0.8"})
-    seen = {}  # lights drawn at the same place share one label
+            if _area(outline) <= 1e-9:
+                numbers.append((tuple(sum(c) / 4 for c in zip(*outline)), "object",
+                                str(index)))
+    ax.plot(0.0, 0.0, marker="s", color=COLORS["camera"])
+    labels = [((0.0, 0.0), "camera", "camera")]
     for k, position in enumerate(lights):
         if position is not None:
-            seen.setdefault(tuple(round(c, 9) for c in flat(position)), []).append(k)
-    for at, indices in seen.items():
-        ax.plot(*at, marker="*", markersize=12, color=COLORS["light"], zorder=4)
-        names = ", ".join(map(str, indices))
-        ax.annotate(f" light{'s' if len(indices) > 1 else ''} {names}", at, fontsize=8)
-    ax.plot(0.0, 0.0, marker="s", color=COLORS["camera"])
-    ax.annotate(" camera", (0.0, 0.0), fontsize=8, color=COLORS["camera"])
-    _draw_rays(ax, history, flat, lights, _size(shapes, lights))
+            ax.plot(*flat(position), marker="*", markersize=12, color=COLORS["light"],
+                    zorder=4)
+            labels.append((flat(position), "light", f"light {k}"))
+    labels += _draw_rays(ax, history, flat, lights, _size(shapes, lights))
+    _write_labels(ax, labels + numbers)
+
+
+def merged_labels(labels, extent, fraction=LABEL_MERGE_FRACTION):
+    """The labels [(point, label)] of a view grouped as [(point, [label, ...])]: a label
+    closer than fraction * extent to the point of an earlier group joins that group."""
+    groups = []
+    for point, label in labels:
+        for at, members in groups:
+            if math.dist(at, point) < fraction * extent:
+                members.append(label)
+                break
+        else:
+            groups.append((point, [label]))
+    return groups
+
+
+def _write_labels(ax, labels):
+    """Writes the labels [(point, kind, text)] of a view, those that coincide as one."""
+    extent = max(ax.dataLim.width, ax.dataLim.height)
+    for at, members in merged_labels([(p, (kind, text)) for p, kind, text in labels],
+                                     extent):
+        members = list(dict.fromkeys(members))  # two rays' "acne" at one point: once
+        kinds = {kind for kind, _ in members}
+        if kinds == {"object"}:  # the objects' numbers, boxed at their centres
+            ax.annotate(", ".join(text for _, text in members), at, fontsize=9,
+                        color=COLORS["object"], ha="center", va="center",
+                        bbox={"boxstyle": "round", "fc": "white", "ec": "0.8"})
+            continue
+        # beside other labels a bare number would read as part of them
+        text = ", ".join(f"object {text}" if kind == "object" else text
+                         for kind, text in members)
+        color = LABEL_COLORS[kinds.pop()] if len(kinds) == 1 else "black"
+        # set off up and to the right, clear of the point's marker
+        ax.annotate(text, at, xytext=(6, 4), textcoords="offset points", fontsize=8,
+                    color=color, zorder=6)
 
 
 def _area(outline):
@@ -129,6 +169,9 @@ def _size(shapes, lights):
 
 
 def _draw_rays(ax, history, flat, lights, size):
+    """Draws the camera ray, its hit and normal, and the shadow rays; returns the labels
+    [(point, kind, text)] of what it drew."""
+    labels = []
     camera = history.camera_ray
     hit = history.camera_hit.hit if history.camera_hit else None
     if hit is not None:
@@ -137,10 +180,10 @@ def _draw_rays(ax, history, flat, lights, size):
         length = math.sqrt(sum(c * c for c in camera.direction)) or 1.0
         end = tuple(2.0 * size * c / length for c in camera.direction)
     else:
-        return
+        return labels
     ax.plot(*zip(flat(camera.origin or (0.0, 0.0, 0.0)), flat(end)), color=COLORS["camera"])
     if hit is None:
-        return
+        return labels
     ax.plot(*flat(hit.point), marker="o", color=COLORS["camera"])
     if hit.normal is not None:
         tip = tuple(p + 0.15 * size * n for p, n in zip(hit.point, hit.normal))
@@ -158,7 +201,8 @@ def _draw_rays(ax, history, flat, lights, size):
                     zorder=3)
             ax.plot(*flat(stop), marker="x", markersize=9, color=COLORS["blocked"], zorder=3)
             if query.acne:
-                ax.annotate(" acne", flat(stop), color=COLORS["blocked"], fontsize=8)
+                labels.append((flat(stop), "acne", "acne"))
         else:
             ax.plot(*zip(flat(start), flat(target)), color=COLORS["visible"])
+    return labels
 

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import settings
 
 import pyrt.workers
-from helpers import APP, HeldBackWorker, run_python, wait_for_file
+from helpers import APP, HeldBackWorker, run_python, wait_for_worker
 
 settings.register_profile("repeatable", derandomize=True)
 settings.register_profile("hunt", derandomize=False)
@@ -29,10 +29,11 @@ def all_figures(tmp_path_factory):
 @pytest.fixture
 def worker_first(monkeypatch, tmp_path):
     """Makes this process hold back its first block of rows until a worker process has
-    finished one, and the worker hold back its first block until this process has taken
-    one, so that both surely render part of the image, however the processes are
-    scheduled. Call it before the render; it returns the marker file a worker leaves once
-    its first block is in the image.
+    finished one (or stopped), and the worker hold back its first block until this process
+    has taken one, so that both render part of the image however late a loaded machine
+    starts the worker. Call it before the render; it returns the marker file a worker
+    leaves once its first block is in the image. A test asserts the image, not the marker:
+    which process rendered which rows is the scheduler's choice.
 
     raise_in_worker = (exception class, arguments): the worker raises that exception in its
     first block, once it has rendered the rows and left the marker: as an error in
@@ -46,7 +47,7 @@ def worker_first(monkeypatch, tmp_path):
 
         def held_back(integrator, y0, y1, samples):  # only this process renders here
             taken.touch()
-            wait_for_file(marker)  # else it could take every block before a worker starts
+            wait_for_worker(marker)  # else it could take every block before a worker starts
             rows = render_block(integrator, y0, y1, samples)
             if interrupt:
                 raise KeyboardInterrupt

@@ -5,6 +5,7 @@ tan(fov/2) = 1: pixel (x, y) of a width x height image looks along
 (x_s * width/height, y_s, -1) with x_s = 2(x + 0.5)/width - 1 and y_s = 1 - 2(y + 0.5)/height.
 The centre pixel of an image with odd sides looks straight down -z."""
 import math
+import multiprocessing
 import os
 import random as random_module  # the star imports below bind random to random.random
 import subprocess
@@ -213,6 +214,32 @@ class StudentPhongIntegrator(Integrator):
         return color
 
 
+class ShadowRayFrom(Integrator):
+    """The course's Phong, its shadow ray Ray(hit_point, wi, distance) with t_min set to
+    `t_min`: 0 leaves out the offset that keeps the ray off its own surface."""
+
+    def __init__(self, t_min):
+        super().__init__("unused")
+        self.t_min = t_min
+
+    def compute_color(self, ray):
+        hit = self.scene.closest_hit(ray)
+        if not hit.has_hit:
+            return RGBColor(0.0, 0.0, 0.0)
+        brdf = self.scene.object_list[hit.primitive_index].get_BRDF()
+        color = brdf.kd.multiply(self.scene.i_a)
+        for light in self.scene.pointLights:
+            to_light = light.pos - hit.hit_point
+            distance = Length(to_light)
+            wi = Normalize(to_light)
+            shadow = Ray(hit.hit_point, wi, distance)
+            shadow.t_min = self.t_min
+            if not self.scene.any_hit(shadow):
+                f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
+                color = color + light.intensity.multiply(f) / (distance * distance)
+        return color
+
+
 def visible_lights(scene, hit):
     """The point lights that light the point of hit (a HitData) as PhongIntegrator decides
     it: each light in front of the surface, n . (pos - p) > 0, whose shadow_ray meets
@@ -234,10 +261,21 @@ def visible_lights(scene, hit):
     return seen
 
 
-def wait_for_file(path, seconds=60):
-    """Waits until another process has made the file at path (at most `seconds`)."""
+def wait_for_file(path, seconds=SUBPROCESS_TIMEOUT):
+    """Waits until another process has made the file at path; `seconds` is only there so
+    that a process that hangs cannot hang the suite."""
     deadline = time.monotonic() + seconds
     while not os.path.exists(path) and time.monotonic() < deadline:
+        time.sleep(0.005)
+
+
+def wait_for_worker(path, seconds=SUBPROCESS_TIMEOUT):
+    """Waits until a worker process of this one has made the file at path, or none is alive
+    any more (it stopped, or could not start): however late a loaded machine starts it.
+    `seconds` is only there so that a worker that hangs cannot hang the suite."""
+    deadline = time.monotonic() + seconds
+    while (not os.path.exists(path) and multiprocessing.active_children()
+           and time.monotonic() < deadline):
         time.sleep(0.005)
 
 

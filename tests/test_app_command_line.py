@@ -3,8 +3,10 @@ documents; each option does what it promises; --all-figures compares the figures
 course's."""
 import inspect
 import json
+import os
 import re
 import shutil
+import subprocess
 import sys
 from pathlib import Path
 from types import SimpleNamespace
@@ -15,7 +17,8 @@ import pytest
 
 import AppRenderer
 from AppRenderer import cornell_box_scene, sphere_test_scene
-from helpers import APP, REPO, render_image, run_python
+from helpers import (APP, REPO, SUBPROCESS_TIMEOUT, headless_env, render_image,
+                     run_python)
 from pyrt.compare import REFERENCE_DIR
 from pyrt.sampling import ADAPTIVE_TOLERANCE
 from PyRT_Integrators import (DepthIntegrator, IntersectionIntegrator, Integrator,
@@ -147,6 +150,25 @@ def test_bad_option_ends_the_script_with_status_2_before_rendering(tmp_path):
     assert result.returncode == 2
     assert result.stderr.startswith("usage:")
     assert "--spp" in result.stderr, result.stderr
+    assert not (tmp_path / "o").exists()
+
+
+def test_broken_opencv_ends_the_script_with_its_fix_and_no_traceback(tmp_path):
+    # An empty cv2 package first on the import path, as uninstalling one of
+    # opencv-python and opencv-python-headless leaves it when both were installed
+    fake = tmp_path / "fake"
+    (fake / "cv2").mkdir(parents=True)
+    (fake / "cv2" / "__init__.py").write_text("")
+    env = headless_env()
+    env["PYTHONPATH"] = os.pathsep.join([str(fake), env["PYTHONPATH"]])
+    result = subprocess.run([sys.executable, str(APP), "--width", "8", "--height", "8",
+                             "--out", str(tmp_path / "o"), "--no-window"], cwd=tmp_path,
+                            env=env, capture_output=True, text=True,
+                            timeout=SUBPROCESS_TIMEOUT)
+    output = result.stdout + result.stderr
+    assert result.returncode != 0
+    assert "pip install --force-reinstall opencv-python-headless" in result.stderr, output
+    assert "Traceback" not in output
     assert not (tmp_path / "o").exists()
 
 

@@ -156,8 +156,9 @@ def failures_of_the_checks(folder):
     """{test name: its failure message, or None when it passed} of `python -m pytest` run
     in folder, from pytest's JUnit XML report."""
     report = folder / "report.xml"
-    run_python(["-m", "pytest", "-q", "-p", "no:cacheprovider", f"--junitxml={report}"],
-               cwd=folder)
+    result = run_python(["-m", "pytest", "-q", "-p", "no:cacheprovider",
+                         f"--junitxml={report}"], cwd=folder)
+    assert report.exists(), result.stdout + result.stderr  # pytest itself failed
     text = report.read_text(encoding="utf-8")
     cases = re.findall(r'<testcase [^>]*name="(\w+)"[^>]*?(/>|>(.*?)</testcase>)', text,
                        re.DOTALL)

@@ -18,10 +18,11 @@ import pytest
 
 import pyrt.acceleration.accelerated
 from AppRenderer import cornell_box_scene, sphere_test_scene
-from helpers import StudentPhongIntegrator, fov90_scene, read_png, render_image
+from helpers import (ShadowRayFrom, StudentPhongIntegrator, fov90_scene, read_png,
+                     render_image)
 from PyRT_Core import *
 from pyrt.explain import explain_pixel, vector
-from pyrt.explain_picture import save_picture
+from pyrt.explain_picture import merged_labels, save_picture
 from PyRT_Integrators import *
 
 FLOOR_PIXEL = (250, 453)  # of Figure 1, 500 x 500: the floor straight below the sphere
@@ -93,32 +94,6 @@ def test_a_background_pixel_tells_that_every_object_missed():
     assert history.shadow_rays() == [] and history.color == (0.0, 0.0, 0.0)
     assert "camera ray -> closest_hit: no hit" in str(history)
     assert "every object missed (2 asked)" in str(history)
-
-
-class ShadowRayFrom(Integrator):
-    """The course's Phong, its shadow ray Ray(hit_point, wi, distance) with t_min set to
-    `t_min`: 0 leaves out the offset that keeps the ray off its own surface."""
-
-    def __init__(self, t_min):
-        super().__init__("unused")
-        self.t_min = t_min
-
-    def compute_color(self, ray):
-        hit = self.scene.closest_hit(ray)
-        if not hit.has_hit:
-            return RGBColor(0.0, 0.0, 0.0)
-        brdf = self.scene.object_list[hit.primitive_index].get_BRDF()
-        color = brdf.kd.multiply(self.scene.i_a)
-        for light in self.scene.pointLights:
-            to_light = light.pos - hit.hit_point
-            distance = Length(to_light)
-            wi = Normalize(to_light)
-            shadow = Ray(hit.hit_point, wi, distance)
-            shadow.t_min = self.t_min
-            if not self.scene.any_hit(shadow):
-                f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
-                color = color + light.intensity.multiply(f) / (distance * distance)
-        return color
 
 
 def wall_scene():
@@ -333,6 +308,27 @@ def test_the_picture_is_saved_where_asked(tmp_path):
     # the blocked shadow ray is drawn in red: matplotlib's tab:red is (214, 39, 40)
     red = np.all(np.abs(picture * 255 - (214, 39, 40)) < 2, axis=2)
     assert red.sum() > 50
+
+
+def test_labels_of_points_that_coincide_in_a_view_are_merged_into_one():
+    # A view 10 across merges labels closer than 0.03 x 10 = 0.3 to a group's first point:
+    # the camera and a light above it (the sphere scene's top view), and a hit 0.2 from
+    # the middle of an edge-on floor; the sphere's centre lies 2 from that hit.
+    labels = [((0.0, 0.0), "camera"), ((0.0, 0.0), "light 0"), ((5.0, -2.0), "acne"),
+              ((5.2, -2.0), "object 1"), ((5.0, 0.0), "object 0")]
+    assert merged_labels(labels, 10.0) == [((0.0, 0.0), ["camera", "light 0"]),
+                                           ((5.0, -2.0), ["acne", "object 1"]),
+                                           ((5.0, 0.0), ["object 0"])]
+
+
+def test_a_label_joins_a_group_by_its_distance_to_the_groups_first_point():
+    # 0.25 from the first point joins it; 0.5 from it does not, though 0.25 from the second
+    labels = [((0.0, 0.0), "a"), ((0.0, 0.25), "b"), ((0.0, 0.5), "c")]
+    assert merged_labels(labels, 10.0) == [((0.0, 0.0), ["a", "b"]), ((0.0, 0.5), ["c"])]
+    # in a view 100 across, 0.5 is far below 3: one label; in one 1 across, 0.25 is apart
+    assert merged_labels(labels, 100.0) == [((0.0, 0.0), ["a", "b", "c"])]
+    assert merged_labels(labels, 1.0) == [((0.0, 0.0), ["a"]), ((0.0, 0.25), ["b"]),
+                                          ((0.0, 0.5), ["c"])]
 
 
 # The course's own base code, as far as explain_pixel meets it: plain classes without

@@ -151,12 +151,14 @@ def test_hunt_flaky_reports_each_failed_test_with_the_seeds_of_its_runs(tmp_path
     # --rootdir: test ids relative to tmp_path, wherever the repository lies
     result = run_python([TESTS / "hunt_flaky.py", "--runs", 2, "--load", 0, "--seed", 7,
                          f"--rootdir={tmp_path}", tests], cwd=tmp_path)
-    assert result.returncode == 1, result.stdout + result.stderr
+    output = result.stdout + result.stderr  # what a failure shows: stderr says why
+    assert result.returncode == 1, output
     lines = result.stdout.splitlines()
-    assert lines[0].startswith("2 run(s) from seed 7, 0 busy process(es) on "), lines
+    assert lines and lines[0].startswith("2 run(s) from seed 7, 0 busy process(es) on "), (
+        output)
     for run, seed in [(1, 7), (2, 8)]:
         assert any(line.startswith(f"run {run}/2, seed {seed}, --rootdir={tmp_path} {tests}: "
-                                   "1 failed, 1 passed ") for line in lines), lines
+                                   "1 failed, 1 passed ") for line in lines), output
     assert lines.count("    FAILED test_sample.py::test_that_fails (call)") == 2
     assert "2 run(s) in random order with 0 busy process(es): 0 green, 2 red" in lines
     assert "  test_sample.py::test_that_fails: failed in 2 of 2 run(s), seed(s) 7, 8" in lines
