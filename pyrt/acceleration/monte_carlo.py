@@ -6,10 +6,18 @@ import numpy as np
 
 from PyRT_Common import BLACK, EPSILON, HUGEVALUE, RGBColor, sample_set_hemisphere, unit_components
 from PyRT_Core import UNIT_HIGH, UNIT_LOW, Lambertian
+from pyrt.acceleration.culling import scene_size
 from pyrt.scalar_intersections import POINT_AND_NORMAL
 
 # center_around_normal's "jittered up", the vector its frame starts from
 JITTERED_UP = (0.00319, 1.0, 0.0078)
+# A sample ray leaves its object's surface into the hemisphere around the normal. Its own
+# object could meet it again only at a distance of about the rounding error of the hit
+# point over its cosine, e * scene size / cos with e ~ 1e-15, and the ray starts at
+# EPSILON: when cos > OWN_OBJECT_CLEARANCE * scene size, that distance is below 1e-6, far
+# below EPSILON (1e-4), so the own object is not tested (a sphere is convex, a flat object
+# is met at its plane only).
+OWN_OBJECT_CLEARANCE = 1e-9
 
 
 class AcceleratedCMC:
@@ -39,8 +47,13 @@ class AcceleratedCMC:
             self.last_column, self.last_row = env_map.width - 1, env_map.height - 1
         self.samples = integrator.n_samples
         # the scalar test of every object, in the order of object_list (can_fuse: every
-        # object has one), for the sample rays, which start anywhere
+        # object has one), for the sample rays, which start anywhere; and for those that
+        # leave their object clearly (OWN_OBJECT_CLEARANCE), every other object's
         self.tests = [entry[:3] for entry in queries.everywhere]
+        self.others = [[test for test in self.tests if test[2] != index]
+                       for index in range(len(self.tests))]
+        self.own_clearance = OWN_OBJECT_CLEARANCE * scene_size(scene.object_list,
+                                                               scene.pointLights)
         # random() as sample_set_hemisphere draws it: Python's global generator
         self.random = sample_set_hemisphere.__globals__["random"]
 
@@ -82,6 +95,7 @@ class AcceleratedCMC:
         draws = [draw() for _ in range(2 * self.samples)]
         prob = 1 / (2 * pi)  # UniformPDF.get_val
         tests, emissions, env_map = self.tests, self.emissions, self.env_map
+        others, clearance = self.others[index], self.own_clearance
         red = green = blue = 0.0  # the sum of the terms that are doubles
         map_rows, map_columns, map_factors = [], [], []  # the float32 terms' L and f
         for k in range(0, len(draws), 2):
@@ -103,10 +117,10 @@ class AcceleratedCMC:
             inverse = 1.0 / sqrt(wx * wx + wy * wy + wz * wz)  # Normalize(wi) once more
             rx, ry, rz = wx * inverse, wy * inverse, wz * inverse
             hit_index, t_max = None, HUGEVALUE
-            for test, constants, index in tests:
+            for test, constants, object_index in (others if cos_theta > clearance else tests):
                 t = test(constants, px, py, pz, wx, wy, wz, rx, ry, rz, EPSILON, t_max)
                 if t is not None and (hit_index is None or t < t_max):
-                    hit_index, t_max = index, t
+                    hit_index, t_max = object_index, t
             if hit_index is not None:
                 er, eg, eb = emissions[hit_index]
                 if er or eg or eb:  # L.multiply(f) / prob, in doubles
