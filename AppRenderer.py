@@ -444,6 +444,10 @@ def parse_args(argv):
                      "pixels at edges get")
     if args.tolerance is not None and not args.adaptive:
         parser.error("argument --tolerance: only applies with --adaptive")
+    if args.adaptive and args.integrator in MONTE_CARLO:
+        parser.error("argument --adaptive: refines where neighbouring pixels differ, which "
+                     "Monte Carlo noise makes them do nearly everywhere: measured, no less "
+                     "error for the time (docs/monte-carlo.md); give --samples N instead")
     # FRAMEWORK ONLY END
     return args
 

@@ -217,6 +217,12 @@ def test_the_monte_carlo_integrator_renders_figure_3_of_practice_2_by_default(co
                          "--samples", "8"]).samples == 8
 
 
+def test_adaptive_sampling_is_refused_for_monte_carlo_noise(command_line, capsys):
+    assert usage_error(command_line, capsys, ["--integrator", "cmc", "--spp", "4",
+                                              "--adaptive"]).endswith(
+        "give --samples N instead")
+
+
 def test_samples_are_refused_for_an_integrator_that_takes_none(command_line, capsys):
     assert usage_error(command_line, capsys, ["--samples", "8"]) == (
         "AppRenderer.py: error: argument --samples: only applies with --integrator cmc")
