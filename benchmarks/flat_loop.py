@@ -25,27 +25,13 @@ from PyRT_Core import EDGE_TOLERANCE, Parallelogram, Sphere
 def flat_phong(scene) -> np.ndarray:
     """The Phong image of a scene of Spheres and Parallelograms with Lambertian BRDFs, as
     PhongIntegrator renders it, made by one flat loop."""
-    camera, objects = scene.camera, []
-    for obj in scene.object_list:
-        kd = obj.BRDF.kd
-        if type(obj) is Sphere:
-            c = obj.origin
-            constants = (c.x, c.y, c.z, obj.radius)
-        elif type(obj) is Parallelogram:
-            n, p, a, b = obj.normal, obj.point, obj.coordinate_a, obj.coordinate_b
-            constants = (n.x, n.y, n.z, p.x, p.y, p.z, a.x, a.y, a.z, b.x, b.y, b.z)
-        else:
-            raise TypeError(f"flat_phong renders spheres and parallelograms, not {obj!r}")
-        objects.append((type(obj) is Sphere, constants, (kd.r, kd.g, kd.b)))
+    camera, objects = scene.camera, flat_objects(scene, "flat_phong")
     lights = [(light.pos.x, light.pos.y, light.pos.z, light.intensity.r, light.intensity.g,
                light.intensity.b) for light in scene.pointLights]
     ambient_r, ambient_g, ambient_b = scene.i_a.r, scene.i_a.g, scene.i_a.b
     low, high = -EDGE_TOLERANCE, 1.0 + EDGE_TOLERANCE
     width, height = camera.width, camera.height
-    # Camera.row_directions: (px, py, -1) * (1 / |(px, py, -1)|), a whole row at once
-    scale_y = tan(camera.vertical_fov / 2.0)
-    scale_x = scale_y * camera.aspect_ratio
-    screen_x = np.array([(2.0 * (x + 0.5) / width - 1.0) * scale_x for x in range(width)])
+    scale_y, screen_x = screen_coordinates(camera)
     image = np.zeros((height, width, 3))
     for y in range(height):
         screen_y = (1.0 - 2.0 * (y + 0.5) / height) * scale_y
@@ -158,28 +144,16 @@ def flat_cmc(scene, samples: int, stream_seed: int) -> np.ndarray:
     number render() drew to seed its rows (pyrt.rows.RowStreams). The terms of the map are
     float32, as the course's arithmetic makes them (pyrt.acceleration.monte_carlo), summed
     with numpy per pixel."""
-    camera, objects = scene.camera, []
     for obj in scene.object_list:
         if obj.emission.r or obj.emission.g or obj.emission.b:
             raise ValueError(f"flat_cmc renders no emitting object, such as {obj!r}")
-        kd = obj.BRDF.kd
-        if type(obj) is Sphere:
-            c = obj.origin
-            constants = (c.x, c.y, c.z, obj.radius)
-        elif type(obj) is Parallelogram:
-            n, p, a, b = obj.normal, obj.point, obj.coordinate_a, obj.coordinate_b
-            constants = (n.x, n.y, n.z, p.x, p.y, p.z, a.x, a.y, a.z, b.x, b.y, b.z)
-        else:
-            raise TypeError(f"flat_cmc renders spheres and parallelograms, not {obj!r}")
-        objects.append((type(obj) is Sphere, constants, (kd.r, kd.g, kd.b)))
+    camera, objects = scene.camera, flat_objects(scene, "flat_cmc")
     env_map = scene.env_map
     if env_map is not None:
         texels, last_row, last_column = env_map.env_map_hdr, env_map.height - 1, env_map.width - 1
     low, high = -EDGE_TOLERANCE, 1.0 + EDGE_TOLERANCE
     width, height = camera.width, camera.height
-    scale_y = tan(camera.vertical_fov / 2.0)
-    scale_x = scale_y * camera.aspect_ratio
-    screen_x = np.array([(2.0 * (x + 0.5) / width - 1.0) * scale_x for x in range(width)])
+    scale_y, screen_x = screen_coordinates(camera)
     two_pi, prob = 2 * pi, 1 / (2 * pi)
     ax, ay, az = 0.00319, 1.0, 0.0078  # center_around_normal's jittered up
     image = np.zeros((height, width, 3))
@@ -292,3 +266,31 @@ def flat_cmc(scene, samples: int, stream_seed: int) -> np.ndarray:
                 terms /= np.float32(prob)
                 image[y, x] = np.cumsum(terms, axis=0)[-1] / np.float32(samples)
     return image
+
+
+def flat_objects(scene, name: str) -> list:
+    """The scene's objects as the flat loops read them: (is a sphere, the constants of its
+    intersection test, its Lambertian kd as (r, g, b)); a TypeError naming the loop for an
+    object that is neither a Sphere nor a Parallelogram."""
+    objects = []
+    for obj in scene.object_list:
+        kd = obj.BRDF.kd
+        if type(obj) is Sphere:
+            c = obj.origin
+            constants = (c.x, c.y, c.z, obj.radius)
+        elif type(obj) is Parallelogram:
+            n, p, a, b = obj.normal, obj.point, obj.coordinate_a, obj.coordinate_b
+            constants = (n.x, n.y, n.z, p.x, p.y, p.z, a.x, a.y, a.z, b.x, b.y, b.z)
+        else:
+            raise TypeError(f"{name} renders spheres and parallelograms, not {obj!r}")
+        objects.append((type(obj) is Sphere, constants, (kd.r, kd.g, kd.b)))
+    return objects
+
+
+def screen_coordinates(camera) -> tuple:
+    """(scale_y, screen_x) of Camera.row_directions, whose row y has the directions
+    (screen_x, (1 - 2 (y + 0.5)/height) scale_y, -1) * (1 / their length)."""
+    scale_y = tan(camera.vertical_fov / 2.0)
+    scale_x = scale_y * camera.aspect_ratio
+    return scale_y, np.array([(2.0 * (x + 0.5) / camera.width - 1.0) * scale_x
+                              for x in range(camera.width)])
