@@ -5,11 +5,12 @@ distance at which a primitive's ``intersect`` finds its hit along the ray from (
 with unit direction (dx, dy, dz), or None on a miss; (ux, uy, uz) is that direction
 normalised once more, Normalize(d), along which the plane tests measure t as
 PyRT_Core.course_direction does (the queries normalise a ray's direction once for all the
-objects it is tested against); ``constants`` holds what the test reads of the
-object, as pyrt.acceleration.queries' ``_object_test`` gathers them. Each ``*_hit`` gives the
-hit point and normal (px, py, pz, nx, ny, nz) at that distance, from the same arguments. Every one repeats the
-operations of the method it stands for, in the same order, so that it rounds the same way
-and gives the same numbers, bit for bit, without making a Vector3D or a HitData.
+objects it is tested against); ``constants`` holds what the test reads of the object, as
+pyrt.acceleration.queries' ``_object_test`` gathers them. Each ``*_hit`` gives the hit
+point and normal (px, py, pz, nx, ny, nz) at that distance, from the same arguments.
+Every one repeats the operations of the method it stands for, in the same order, so that
+it rounds the same way and gives the same numbers, bit for bit, without making a Vector3D
+or a HitData.
 """
 from math import sqrt
 

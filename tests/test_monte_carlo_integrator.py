@@ -13,17 +13,19 @@ import random as random_module
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 import pyrt.acceleration.accelerated
 import pyrt.acceleration.fingerprints
 from AppRenderer import cornell_box_scene, sphere_scene
 from benchmarks.flat_loop import flat_cmc
 from helpers import course_renders, global_generator_kept, render_image  # noqa: F401
-from pyrt.acceleration.monte_carlo import AcceleratedCMC
+from pyrt.acceleration.monte_carlo import OWN_OBJECT_CLEARANCE, AcceleratedCMC
 from pyrt.environment_maps import constant_map, sky_map
 from pyrt.workers import START_METHOD_VARIABLE
-from PyRT_Common import (BLACK, Dot, EnvironmentMap, RGBColor, Ray, UniformPDF, Vector3D,
-                         center_around_normal, sample_set_hemisphere)
+from PyRT_Common import (BLACK, Cross, Dot, EnvironmentMap, Length, Normalize, RGBColor, Ray,
+                         UniformPDF, Vector3D, center_around_normal, sample_set_hemisphere)
 from PyRT_Core import Camera, InfinitePlane, Lambertian, Parallelogram, Scene, Sphere
 from PyRT_Integrators import BayesianMonteCarloIntegrator, CMCIntegrator
 
@@ -471,3 +473,60 @@ def test_cmc_render_saves_under_its_samples_name(tmp_path):
     assert sorted(path.name for path in tmp_path.iterdir()) == [
         "img_MC_3_samples_furnace.hdr", "img_MC_3_samples_furnace.npy",
         "img_MC_3_samples_furnace.png"]
+
+
+# ------------------------------------------------------------------------------------------
+# The object a sample ray leaves, left out of its tests (AcceleratedCMC)
+# ------------------------------------------------------------------------------------------
+def leaving_direction(normal, cos_theta, around):
+    """A unit direction at the angle acos(cos_theta) from the unit normal, turned by
+    `around` radians about it."""
+    helper = Vector3D(1.0, 0.0, 0.0) if abs(normal.x) < 0.9 else Vector3D(0.0, 1.0, 0.0)
+    u = Normalize(Cross(normal, helper))
+    v = Cross(normal, u)
+    sin_theta = math.sqrt(1.0 - cos_theta * cos_theta)
+    return Normalize(normal * cos_theta + (u * math.cos(around) + v * math.sin(around))
+                     * sin_theta)
+
+
+coordinates = st.floats(-100.0, 100.0)
+
+
+@settings(max_examples=300)
+@given(centre=st.tuples(coordinates, coordinates, coordinates),
+       radius=st.floats(0.01, 100.0), towards=st.tuples(coordinates, coordinates, coordinates),
+       around=st.floats(0.0, 2 * math.pi))
+def test_a_sample_ray_that_clearly_leaves_a_sphere_never_meets_it_again(centre, radius,
+                                                                        towards, around):
+    # The own object is left out of a sample ray's tests once its cosine exceeds
+    # OWN_OBJECT_CLEARANCE of the scene's size: the plain test, at that very cosine, says
+    # the same, for the hit points PyRT's own arithmetic makes.
+    sphere = Sphere(Vector3D(*centre), radius)
+    outward = Normalize(Vector3D(*towards) + Vector3D(0.0, 0.0, 1e-3))
+    target = Vector3D(*centre) + outward * radius
+    start = target * 3.0 + Vector3D(250.0, 250.0, 250.0)
+    hit = sphere.intersect(Ray(start, Normalize(target - start)))
+    assume(hit.has_hit)
+    size = max(max(abs(c) for c in centre), radius, 1e-300)
+    cos_theta = OWN_OBJECT_CLEARANCE * size * 1.0001
+    assume(cos_theta < 1.0)
+    w = leaving_direction(hit.normal, cos_theta, around)
+    assert not sphere.intersect(Ray(hit.hit_point, w)).has_hit
+
+
+@settings(max_examples=300)
+@given(corner=st.tuples(coordinates, coordinates, coordinates),
+       a=st.floats(0.0, 1.0), b=st.floats(0.0, 1.0), around=st.floats(0.0, 2 * math.pi),
+       start=st.tuples(coordinates, coordinates, coordinates))
+def test_a_sample_ray_that_clearly_leaves_a_parallelogram_never_meets_it_again(
+        corner, a, b, around, start):
+    wall = Parallelogram(Vector3D(*corner), Vector3D(3.0, 0.5, 0.0), Vector3D(0.0, 1.0, 2.0))
+    target = Vector3D(*corner) + Vector3D(3.0, 0.5, 0.0) * a + Vector3D(0.0, 1.0, 2.0) * b
+    assume(Length(target - Vector3D(*start)) > 1e-3)
+    hit = wall.intersect(Ray(Vector3D(*start), Normalize(target - Vector3D(*start))))
+    assume(hit.has_hit)
+    size = max(max(abs(c) for c in corner), max(abs(c) for c in target), 1e-300)
+    cos_theta = OWN_OBJECT_CLEARANCE * size * 1.0001
+    assume(cos_theta < 1.0)
+    w = leaving_direction(hit.normal, cos_theta, around)
+    assert not wall.intersect(Ray(hit.hit_point, w)).has_hit
