@@ -485,8 +485,12 @@ def main(argv=None):
         jobs = [(make_integrator(args.integrator, base, args.max_depth, samples=args.samples),
                  SCENES[args.scene])]
     options = render_options(args)
-    pngs = [render(integrator, make_scene(args.width, args.height), **options)
-            for integrator, make_scene in jobs]
+    try:
+        pngs = [render(integrator, make_scene(args.width, args.height), **options)
+                for integrator, make_scene in jobs]
+    except PermissionError as error:  # an --out folder that cannot be written: said so
+        print(f"{Path(sys.argv[0]).name}: error: {error}", file=sys.stderr)
+        return 1
     shown = pngs[-1]
     if args.all_figures:
         renders = {reference_name(entry): png for entry, png in zip(FIGURES, pngs)}

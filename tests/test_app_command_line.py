@@ -217,6 +217,19 @@ def test_the_monte_carlo_integrator_renders_figure_3_of_practice_2_by_default(co
                          "--samples", "8"]).samples == 8
 
 
+def test_an_out_folder_that_cannot_be_written_is_said_in_one_line(tmp_path, capsys,
+                                                                   monkeypatch):
+    # a file where the folder should be: nothing can be saved inside it
+    blocked = tmp_path / "a_file"
+    blocked.write_text("")
+    monkeypatch.setattr(sys, "argv", ["AppRenderer.py"])
+    assert AppRenderer.main(["--out", str(blocked / "out"), "--width", "4", "--height", "4",
+                             "--no-window"]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("AppRenderer.py: error: render: cannot write the images to ")
+    assert "choose another output folder" in err and "Traceback" not in err
+
+
 def test_adaptive_sampling_is_refused_for_monte_carlo_noise(command_line, capsys):
     assert usage_error(command_line, capsys, ["--integrator", "cmc", "--spp", "4",
                                               "--adaptive"]).endswith(
