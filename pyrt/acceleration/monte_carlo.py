@@ -11,6 +11,8 @@ from pyrt.scalar_intersections import POINT_AND_NORMAL
 
 # center_around_normal's "jittered up", the vector its frame starts from
 JITTERED_UP = (0.00319, 1.0, 0.0078)
+# UniformPDF.get_val, the density of every sample direction
+UNIFORM_DENSITY = 1 / (2 * pi)
 # A sample ray leaves its object's surface into the hemisphere around the normal. Its own
 # object could meet it again only at a distance of about the rounding error of the hit
 # point over its cosine, e * scene size / cos with e ~ 1e-15, and the ray starts at
@@ -93,7 +95,7 @@ class AcceleratedCMC:
         # sample_set_hemisphere(n, UniformPDF()): u1 then u2 for each sample, all first
         draw = self.random
         draws = [draw() for _ in range(2 * self.samples)]
-        prob = 1 / (2 * pi)  # UniformPDF.get_val
+        prob = UNIFORM_DENSITY
         tests, emissions, env_map = self.tests, self.emissions, self.env_map
         others, clearance = self.others[index], self.own_clearance
         red = green = blue = 0.0  # the sum of the terms that are doubles
@@ -141,7 +143,7 @@ class AcceleratedCMC:
         """The colour of a pixel whose terms are the map's (see above): the float32 sum of
         texel * f / prob over the samples, in their order, over n_samples."""
         terms = self.texels[rows, columns] * np.array(factors).astype(np.float32)
-        terms /= np.float32(1 / (2 * pi))
+        terms /= np.float32(UNIFORM_DENSITY)
         total = np.cumsum(terms, axis=0)[-1] / np.float32(self.samples)
         return RGBColor(float(total[0]), float(total[1]), float(total[2]))
 
