@@ -469,15 +469,19 @@ def render_options(args):
     return options
 
 
+def command_line_error(message):
+    """Says message as a bad option is said, on stderr without a traceback (the fix is all
+    a student needs here), and returns the exit status 1."""
+    print(f"{Path(sys.argv[0]).name}: error: {message}", file=sys.stderr)
+    return 1
+
+
 def main(argv=None):
     """Runs the command line argv (sys.argv's by default) and returns the exit status."""
     args = parse_args(argv)
     problem = opencv_problem()
-    if problem:
-        # Said as a bad option is said, without a traceback: the fix is all a student needs
-        # here. A script that calls Integrator.render() gets it as a RuntimeError.
-        print(f"{Path(sys.argv[0]).name}: error: {problem}", file=sys.stderr)
-        return 1
+    if problem:  # a script that calls Integrator.render() gets it as a RuntimeError
+        return command_line_error(problem)
     base = str(Path(args.out) / FILENAME)
     if args.all_figures:
         jobs = [(figure_integrator(entry, base), SCENES[entry[2]]) for entry in FIGURES]
@@ -488,9 +492,8 @@ def main(argv=None):
     try:
         pngs = [render(integrator, make_scene(args.width, args.height), **options)
                 for integrator, make_scene in jobs]
-    except PermissionError as error:  # an --out folder that cannot be written: said so
-        print(f"{Path(sys.argv[0]).name}: error: {error}", file=sys.stderr)
-        return 1
+    except PermissionError as error:  # an --out folder that cannot be written
+        return command_line_error(error)
     shown = pngs[-1]
     if args.all_figures:
         renders = {reference_name(entry): png for entry, png in zip(FIGURES, pngs)}
