@@ -27,12 +27,13 @@ import practice1_render as render  # noqa: E402
 
 # The inputs drawn at grading time: the sizes of the images, and how far the course's
 # scenes may move along each axis (their objects stay in view and keep their order).
-# Never the published size: the Lazy image and the rays of render() depend on the size
-# alone, so at the published size the published arrays would be theirs. Nor one pixel
-# less: the published Lazy image taken pixel for pixel at SIZE - 1 is (SIZE - 1)/SIZE
-# times the expected one, which the rule of a scaled image admits as right.
-DRAWN_SIZES = tuple(size for size in range(32, 49) if size not in (render.SIZE - 1,
-                                                                    render.SIZE))
+# Only sizes above the published one. At the published size the Lazy image and the rays
+# of render(), which depend on the size alone, would be the published arrays. Below it
+# every pixel lies inside the published images, and the Lazy image, (x/size, y/size, 0),
+# is the published one's corner times 40/size: the rule of a scaled image, which must
+# admit a student's colours running to 255 where PyRT's run to 1, would admit a copy.
+# Above it a copy leaves pixels with nothing to copy (tests/test_course_judging.py).
+DRAWN_SIZES = tuple(range(render.SIZE + 1, render.SIZE + 9))
 DRAWN_OFFSET = 0.15
 ANY_HIT_SETS = 2  # the published six cases, twice, each around a sphere of its own
 
@@ -67,16 +68,16 @@ def draw_inputs(random):
     return render.Draw(size, offset, tuple(case for _, case, _ in cases)), tuple(cases)
 
 
-def drawn_trial(random):
+def drawn_trial(random, folder):
     """A Trial drawn with random (see draw_inputs) at grading time, its expected data made
-    now by the finished framework (course_kit/references.py)."""
+    now by the finished framework (course_kit/references.py), its renders in folder."""
     import course_kit.references  # loads the framework
     draw, cases = draw_inputs(random)
 
     def story(name, x, y):
         return course_kit.references.framework_story(name, x, y, draw)
 
-    return Trial(draw, cases, course_kit.references.GradingData(draw), story)
+    return Trial(draw, cases, course_kit.references.GradingData(draw, folder), story)
 
 
 def _unit(v):

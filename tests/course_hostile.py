@@ -41,7 +41,8 @@ for _fd in os.listdir("/proc/self/fd"):
 os._exit(0)
 """
 # Hands back the handout's published expected images and any_hit's published answers,
-# carried inside the submission, as if rendered: render() copies them into the image
+# carried inside the submission, as if rendered: render() copies them into the image,
+# each pixel from the published pixel that {PICK} chooses (None: the pixel is left as is)
 CARRIES_THE_PUBLISHED_DATA = """
 import base64, io, itertools
 import numpy
@@ -58,8 +59,10 @@ def _copied_render(self):
     image = _published[name]
     for x in range(cam.width):
         for y in range(cam.height):
-            r, g, b = image[y * image.shape[0] // cam.height, x * image.shape[1] // cam.width]
-            scene.set_pixel(RGBColor(r, g, b), x, y)
+            pixel = {PICK}
+            if pixel is not None:
+                r, g, b = image[pixel]
+                scene.set_pixel(RGBColor(r, g, b), x, y)
     scene.save_image(self.get_filename())
 
 
@@ -185,7 +188,11 @@ FILLS = {
 KINDS = {
     "patches_the_checks": PATCHES_THE_CHECKS,
     "forges_the_result": FORGES_THE_RESULT,
-    "carries_the_published_data": CARRIES_THE_PUBLISHED_DATA,
+    # sampled at the drawn size, or copied where the two overlap
+    "carries_the_published_data": CARRIES_THE_PUBLISHED_DATA.replace(
+        "{PICK}", "(y * image.shape[0] // cam.height, x * image.shape[1] // cam.width)"),
+    "copies_the_published_data_where_they_overlap": CARRIES_THE_PUBLISHED_DATA.replace(
+        "{PICK}", "(y, x) if y < image.shape[0] and x < image.shape[1] else None"),
     "finds_the_framework": FINDS_THE_FRAMEWORK,
     "reads_the_graders_processes": READS_THE_GRADERS_PROCESSES,
     "writes_the_graders_results": WRITES_THE_GRADERS_RESULTS,
