@@ -390,8 +390,9 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
     todo = [submission for submission in submissions if submission.name not in records]
     jobs = min(jobs or os.cpu_count() or 1, len(todo)) or 1
     servers = queue.Queue()
-    with tempfile.TemporaryDirectory(prefix="pyrt-handout-") as template:
-        template = course_kit.handout.write_handout(Path(template) / "handout")
+    # every folder of the grading lies in this one, which goes when the grading ends
+    with tempfile.TemporaryDirectory(prefix="pyrt-grade-") as grading:
+        template = course_kit.handout.write_handout(Path(grading) / "handout")
         try:
             cores = course_kit.isolation.cores()
             for index in range(jobs if todo else 0):
@@ -400,7 +401,8 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
             # imported and made while the servers start: the judge (numpy, the framework),
             # the inputs, and what the framework makes of them
             judging = importlib.import_module("course_kit.judging")
-            trial = judging.drawn_trial(draws or random.SystemRandom()) if todo else None
+            trial = judging.drawn_trial(draws or random.SystemRandom(),
+                                        Path(grading) / "expected") if todo else None
             # The pool ends before the servers close: a submission still being graded
             # gives its server back first, and one not started yet never waits for one
             with ThreadPoolExecutor(max_workers=jobs) as pool:

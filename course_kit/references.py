@@ -19,6 +19,7 @@ The file is written the same, byte for byte, whenever the framework's images are
 """
 import contextlib
 import io
+import os
 import sys
 import tempfile
 import threading
@@ -238,14 +239,17 @@ class GradingData(Mapping):
     """The expected data of a draw made at grading time, by the finished framework, in
     the form of the stored one (practice1_checks reads both): the expected images made at
     once, the mistakes' images when first asked for, and the seams only at the pixels a
-    judged image gets wrong (seams_at), where they matter. Safe for the grader's threads."""
+    judged image gets wrong (seams_at), where they matter. The framework's renders go into
+    folder, which belongs to the grading (and goes with it). Safe for the grader's
+    threads."""
 
-    def __init__(self, draw):
+    def __init__(self, draw, folder):
         self.draw = draw
         self._arrays = {}
         self._seams = {}  # (name, y, x) -> the colours of the seam there, or None
         self._lock = threading.Lock()
-        self._folder = tempfile.mkdtemp(prefix="pyrt-expected-")
+        self._folder = str(folder)
+        os.makedirs(self._folder, exist_ok=True)
         with contextlib.redirect_stdout(io.StringIO()):  # render() says where it saved
             for name in checks.IMAGES:
                 self._arrays[name] = framework_image(name, self._folder, draw)
