@@ -9,7 +9,9 @@ pyrt/) and course_kit/, which Gradescope unzips into ROOT/source/. run_autograde
 submission with the checks, limits and points of `grade` (course_kit/grader.py, the same
 code), and writes ROOT/results/results.json, also when the grader itself fails (score 0,
 the error in its output, the traceback in what it printed, which only the staff sees);
-when Python cannot even start, run_autograder writes one of its own.
+when Python cannot even start, run_autograder writes one of its own. setup.sh ends with
+`python3 -m course_kit.autograder check`, which says in the build's log which isolation
+run_autograder will use, or in one line why it would refuse to grade.
 
 ROOT is the environment variable AUTOGRADER_ROOT, /autograder by default, and the Python
 that runs the grader AUTOGRADER_PYTHON, python3 by default: so the zip runs end to end in
@@ -53,6 +55,8 @@ cd "$(dirname "$0")"
 apt-get update
 apt-get install -y --no-install-recommends python3 python3-pip bubblewrap
 "${AUTOGRADER_PYTHON:-python3}" -m pip install --no-cache-dir -r requirements.txt
+# says in one line, in the image's build log, when run_autograder could not sandbox here
+"${AUTOGRADER_PYTHON:-python3}" -m course_kit.autograder check
 """
 RUN_AUTOGRADER = """\
 #!/usr/bin/env bash
@@ -128,6 +132,29 @@ def gradescope_submission(folder):
     return submission
 
 
+def refusal_of(isolation):
+    """Why run_autograder refuses to grade in isolation (chosen by course_kit.sandbox), in
+    one line, or None when it grades: where the image cannot sandbox the students' code,
+    unless process isolation was asked for."""
+    missing = course_kit.sandbox.cannot_sandbox(isolation)
+    if missing is None:
+        return None
+    return (f"{missing}; run_autograder grades here only with "
+            f"AUTOGRADER_ISOLATION=process, and then {course_kit.sandbox.PROCESS_LIMIT}")
+
+
+def check():
+    """What setup.sh prints when Gradescope builds the image: the isolation that
+    run_autograder will use, or the one line saying why it will refuse to grade."""
+    chosen = course_kit.sandbox.choose()
+    refusal = refusal_of(chosen)
+    if refusal:
+        print(f"PyRT's autograder: WARNING: {refusal}", flush=True)
+    else:
+        print(f"PyRT's autograder: the isolation of each step: {chosen.describe()}")
+    return refusal
+
+
 def run(root, isolation=None):
     """Grades root/submission/ into root/results/results.json (see the module's docstring);
     returns what it wrote."""
@@ -145,12 +172,9 @@ def run(root, isolation=None):
         import course_kit.feedback
         import course_kit.grader
         config = course_kit.grader.load_config(course_kit.grader.CONFIG)
-        chosen = course_kit.sandbox.choose(isolation)
-        if chosen.mode == "process" and isolation != "process":
-            raise course_kit.sandbox.IsolationUnavailable(
-                "neither bubblewrap nor an unprivileged user can run here ("
-                + chosen.why + "), and process isolation keeps no secret from the "
-                "students' code: it runs only when asked for (AUTOGRADER_ISOLATION=process)")
+        refusal = refusal_of(course_kit.sandbox.choose(isolation))
+        if refusal:
+            raise course_kit.sandbox.IsolationUnavailable(refusal)
         submission = gradescope_submission(root / SUBMISSION_NAME)
         with tempfile.TemporaryDirectory(prefix="pyrt-autograder-") as graded:
             record, = course_kit.grader.grade_submissions(
@@ -178,10 +202,14 @@ def main(argv=None):
         prog="python -m course_kit.autograder", description="What Gradescope's run_autograder runs: "
         f"grades ${ROOT_VARIABLE}/{SUBMISSION_NAME}/ (default root {DEFAULT_ROOT}) into "
         "results/results.json.")
-    parser.add_argument("command", choices=["run"])
+    parser.add_argument("command", choices=["run", "check"], help="run: grade the "
+                        "submission; check: say which isolation run would use (setup.sh)")
     course_kit.sandbox.add_argument(parser)
     args = parser.parse_args(argv)
-    run(Path(os.environ.get(ROOT_VARIABLE, DEFAULT_ROOT)), args.isolation)
+    if args.command == "check":
+        check()
+    else:
+        run(Path(os.environ.get(ROOT_VARIABLE, DEFAULT_ROOT)), args.isolation)
     return 0
 
 

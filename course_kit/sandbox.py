@@ -19,11 +19,18 @@ Three modes; the grader takes the strongest that works here, or the one asked fo
 Under bubblewrap as root the steps run as a user of their own as well; without root,
 bubblewrap maps the grader's user into the sandbox, and the limit on processes counts
 from the processes that user already has.
+
+Each mode has a limit, said where it is chosen (limit_of): the unprivileged user may read
+what all may read, a copy of the finished framework included; in process isolation the
+students' code runs as the grader's user. The variable COURSE_KIT_NO_UNPRIVILEGED_USER=1
+makes the grader act as where no unprivileged user can run (CI's run of a machine that
+cannot sandbox at all).
 """
 import fcntl
 import functools
 import os
 import shutil
+import stat
 import subprocess
 import sys
 import tempfile
@@ -45,6 +52,12 @@ SYSTEM_FOLDERS = ("/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32"
 NAMESPACES = ("--unshare-net", "--unshare-pid", "--unshare-ipc", "--unshare-uts",
               "--unshare-cgroup-try")
 PROBE_SECONDS = 60  # at most, for a trial run of bwrap or of Python as another user
+NO_UNPRIVILEGED_USER = "COURSE_KIT_NO_UNPRIVILEGED_USER"  # set: no step runs as another user
+INSTALL_BUBBLEWRAP = "apt-get install bubblewrap"
+ANOTHER_PYTHON = "a Python outside a private home, such as /usr/bin/python3"
+PROCESS_LIMIT = ("in process isolation the students' code runs as the grader's user: it "
+                 "can read and change whatever the grader can (the finished framework, the "
+                 "expected data, the results)")
 
 
 class IsolationUnavailable(ValueError):
@@ -126,9 +139,52 @@ def bubblewrap_runs():
 def other_user_runs_python():
     """Whether a step's user could run this Python and its packages (as root, on Linux,
     whose prctl and /proc the steps' users need)."""
-    return _as_root() and sys.platform.startswith("linux") and _runs([sys.executable, "-I", "-c", "import numpy"],
-                                user=FIRST_USER, group=FIRST_USER, extra_groups=[],
-                                cwd="/")
+    return _as_root() and sys.platform.startswith("linux") and _runs(
+        [sys.executable, "-I", "-c", "import numpy"], user=FIRST_USER, group=FIRST_USER,
+        extra_groups=[], cwd="/")
+
+
+def why_no_bubblewrap():
+    """Why bubblewrap cannot isolate the steps here, with what to do about it, or None when
+    it can."""
+    if not sys.platform.startswith("linux"):
+        return "bubblewrap runs on Linux only"
+    if shutil.which("bwrap") is None:
+        return f"bwrap is not installed ({INSTALL_BUBBLEWRAP})"
+    if not bubblewrap_runs():
+        return "bwrap is installed but cannot make its sandbox here (namespaces not allowed)"
+    return None
+
+
+def why_no_unprivileged_user():
+    """Why the steps cannot run as an unprivileged user here, with what to do about it, or
+    None when they can."""
+    if os.environ.get(NO_UNPRIVILEGED_USER):
+        return f"switched off ({NO_UNPRIVILEGED_USER} is set)"
+    if not sys.platform.startswith("linux"):
+        return "the unprivileged user's isolation runs on Linux only"
+    if not _as_root():
+        return "the grader does not run as root"
+    if other_user_runs_python():
+        return None
+    python = os.path.realpath(sys.executable)
+    private = private_folder(Path(python).parent)
+    if private is not None:
+        return (f"this Python ({python}) lies under {private}, which other users cannot "
+                f"enter: grade with {ANOTHER_PYTHON}")
+    return f"another user cannot run this Python ({python}) with numpy: grade with {ANOTHER_PYTHON}"
+
+
+def private_folder(path):
+    """The outermost folder of path (itself included) that other users may not enter (no
+    execute bit for others), or None."""
+    for folder in [*reversed(Path(path).parents), Path(path)]:
+        try:
+            if not folder.stat().st_mode & stat.S_IXOTH:
+                return folder
+        except OSError:
+            return folder
+    return None
 
 
 def choose(requested=None):
@@ -138,24 +194,43 @@ def choose(requested=None):
         raise IsolationUnavailable(f"unknown isolation {requested!r}; the isolations are "
                                    + ", ".join(MODES))
     if requested in (None, "bubblewrap"):
-        if bubblewrap_runs():
+        why = why_no_bubblewrap()
+        if why is None:
             return Isolation("bubblewrap")
-        why = ("bwrap is not installed (Debian and Ubuntu package bubblewrap)"
-               if shutil.which("bwrap") is None else
-               "bwrap is installed but cannot make its sandbox here (namespaces not allowed)")
         if requested:
             raise IsolationUnavailable(f"the isolation bubblewrap cannot run: {why}")
     else:
         why = "asked for"
     if requested in (None, "unprivileged user"):
-        if other_user_runs_python():
+        cannot = why_no_unprivileged_user()
+        if cannot is None:
             return Isolation("unprivileged user", why)
-        cannot = ("the grader does not run as root" if not _as_root() else
-                  "this Python cannot be run by another user")
         if requested:
             raise IsolationUnavailable(f"the isolation unprivileged user cannot run: {cannot}")
         why += f"; no unprivileged user: {cannot}"
     return Isolation("process", why)
+
+
+def cannot_sandbox(isolation):
+    """One line for a teaching assistant whose machine gives the students' code no sandbox
+    (isolation chose process, not asked for): what is missing and how to get it; None
+    when isolation is a sandbox or process isolation was asked for."""
+    if isolation.mode != "process" or isolation.why == "asked for":
+        return None
+    return f"this machine cannot sandbox the students' code: {isolation.why}"
+
+
+def limit_of(isolation):
+    """What isolation does not keep from the students' code, in one line (None for
+    bubblewrap's)."""
+    if isolation.mode == "process":
+        return PROCESS_LIMIT
+    if isolation.mode == "unprivileged user":
+        return ("in the unprivileged user's isolation any copy of the finished framework "
+                "that all users may read is in the students' reach (the grader's own is "
+                "checked; bubblewrap hides them all): keep your checkouts private "
+                "(chmod 700, docs/course-kit.md)")
+    return None
 
 
 def readable_by_steps(paths):
@@ -200,19 +275,44 @@ def _take_user():
     for user in range(FIRST_USER, FIRST_USER + USERS):
         if user in _held:
             continue
-        # O_NOFOLLOW: a link put in the shared folder leads the grader nowhere
-        lock = os.open(os.path.join(LOCKS, f"pyrt-step-user-{user}.lock"),
-                       os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o600)
-        try:
-            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
-            os.close(lock)
+        lock = _lock_user(user)
+        if lock is None:
             continue
         if _tasks_of(user) == 0:
             _held[user] = lock
             return user
-        os.close(lock)
+        _release_user(user, lock)
     raise RuntimeError(f"no free user number for the steps among {USERS} from {FIRST_USER}")
+
+
+def _lock_path(user):
+    return os.path.join(LOCKS, f"pyrt-step-user-{user}.lock")
+
+
+def _lock_user(user):
+    """The descriptor of user's lock file, locked by this process, or None when another
+    holds it. The file goes when it is given back (_release_user), so a lock is held only
+    while the file locked is the one at the path: one given back meanwhile is not."""
+    path = _lock_path(user)
+    # O_NOFOLLOW: a link put in the shared folder leads the grader nowhere
+    lock = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o600)
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        if os.stat(path, follow_symlinks=False).st_ino == os.fstat(lock).st_ino:
+            return lock
+    except OSError:  # held by another, or removed by the one that held it
+        pass
+    os.close(lock)
+    return None
+
+
+def _release_user(user, lock):
+    """Gives back user's lock, removing its file, so that grading leaves /tmp as it was."""
+    try:
+        os.unlink(_lock_path(user))
+    except OSError:
+        pass
+    os.close(lock)
 
 
 def confinement(isolation):
@@ -236,7 +336,7 @@ def close_confinement(confinement):
     if confinement.cell is not None:
         shutil.rmtree(confinement.cell, ignore_errors=True)
     if confinement.user in _held:
-        os.close(_held.pop(confinement.user))
+        _release_user(confinement.user, _held.pop(confinement.user))
 
 
 def hand_over(scratch, workdir, user):

@@ -16,19 +16,20 @@ from pathlib import Path
 
 import pytest
 
+import course_kit.__main__
+import course_kit.autograder
 import course_kit.grader
 import course_kit.handout
 import course_kit.sandbox
 import course_kit_students as students
 
+NO_UNPRIVILEGED_USER = course_kit.sandbox.why_no_unprivileged_user()
 UNPRIVILEGED_USER = pytest.mark.skipif(
-    not course_kit.sandbox.other_user_runs_python(),
-    reason="no unprivileged user here: it needs root, Linux, and a Python that another "
-    "user may run")
-BUBBLEWRAP = pytest.mark.skipif(
-    not course_kit.sandbox.bubblewrap_runs(),
-    reason="bubblewrap cannot run here (Debian and Ubuntu package bubblewrap; CI installs "
-    "it): the sandbox's tests need it")
+    NO_UNPRIVILEGED_USER is not None,
+    reason=f"needs the unprivileged user's isolation: {NO_UNPRIVILEGED_USER}")
+NO_BUBBLEWRAP = course_kit.sandbox.why_no_bubblewrap()
+BUBBLEWRAP = pytest.mark.skipif(NO_BUBBLEWRAP is not None,
+                                reason=f"needs bubblewrap's sandbox: {NO_BUBBLEWRAP}")
 CONFIG = """\
 [points]
 "1.1" = 25
@@ -195,11 +196,101 @@ def test_without_bwrap_bubblewrap_is_refused_and_a_weaker_isolation_says_why(mon
     with pytest.raises(course_kit.sandbox.IsolationUnavailable) as error:
         course_kit.sandbox.choose("bubblewrap")
     assert str(error.value) == ("the isolation bubblewrap cannot run: bwrap is not installed "
-                                "(Debian and Ubuntu package bubblewrap)")
+                                "(apt-get install bubblewrap)")
     chosen = course_kit.sandbox.choose()
     assert chosen.mode == "process"
-    assert chosen.describe().startswith("process (bwrap is not installed (Debian and Ubuntu "
-                                        "package bubblewrap); no unprivileged user: ")
+    assert chosen.describe().startswith("process (bwrap is not installed (apt-get install "
+                                        "bubblewrap); no unprivileged user: ")
+
+
+def test_the_unprivileged_user_can_be_switched_off(monkeypatch):
+    monkeypatch.setenv(course_kit.sandbox.NO_UNPRIVILEGED_USER, "1")
+    monkeypatch.setattr(course_kit.sandbox, "other_user_runs_python", lambda: True)
+    assert course_kit.sandbox.why_no_unprivileged_user() == (
+        "switched off (COURSE_KIT_NO_UNPRIVILEGED_USER is set)")
+    with pytest.raises(course_kit.sandbox.IsolationUnavailable) as error:
+        course_kit.sandbox.choose("unprivileged user")
+    assert str(error.value).endswith("switched off (COURSE_KIT_NO_UNPRIVILEGED_USER is set)")
+
+
+def test_a_python_in_a_private_home_is_named_as_what_keeps_the_unprivileged_user_out(
+        monkeypatch):
+    # in /tmp, which all may enter (pytest's own folders are their user's only)
+    with tempfile.TemporaryDirectory(dir="/tmp") as folder:
+        os.chmod(folder, 0o755)
+        private_home_is_named(monkeypatch, Path(folder) / "home")
+
+
+def private_home_is_named(monkeypatch, home):
+    python = home / "pyenv" / "bin" / "python3"
+    python.parent.mkdir(parents=True)
+    python.touch()
+    home.chmod(0o700)
+    monkeypatch.setattr(course_kit.sandbox.sys, "executable", str(python))
+    monkeypatch.setattr(course_kit.sandbox.sys, "platform", "linux")
+    monkeypatch.setattr(course_kit.sandbox, "_as_root", lambda: True)
+    monkeypatch.setattr(course_kit.sandbox, "other_user_runs_python", lambda: False)
+    monkeypatch.delenv(course_kit.sandbox.NO_UNPRIVILEGED_USER, raising=False)
+    assert course_kit.sandbox.why_no_unprivileged_user() == (
+        f"this Python ({python}) lies under {home}, which other users cannot enter: grade "
+        "with a Python outside a private home, such as /usr/bin/python3")
+    home.chmod(0o755)
+    assert course_kit.sandbox.why_no_unprivileged_user() == (
+        f"another user cannot run this Python ({python}) with numpy: grade with a Python "
+        "outside a private home, such as /usr/bin/python3")
+
+
+def cannot_sandbox(monkeypatch):
+    """A machine with neither bubblewrap nor an unprivileged user, as the grader sees it."""
+    monkeypatch.setattr(course_kit.sandbox, "why_no_bubblewrap",
+                        lambda: "bwrap is not installed (apt-get install bubblewrap)")
+    monkeypatch.setattr(course_kit.sandbox, "why_no_unprivileged_user",
+                        lambda: "the grader does not run as root")
+
+
+def test_grade_says_in_one_line_before_grading_that_the_machine_cannot_sandbox(
+        monkeypatch, tmp_path, capsys):
+    cannot_sandbox(monkeypatch)
+    (tmp_path / "submissions").mkdir()
+    args = course_kit.__main__.parse_args(["grade", str(tmp_path / "submissions"), "--out",
+                                           str(tmp_path / "results")])
+    assert course_kit.grader.main(args) == 0
+    assert capsys.readouterr().err.splitlines() == [
+        "course_kit grade: this machine cannot sandbox the students' code: bwrap is not "
+        "installed (apt-get install bubblewrap); no unprivileged user: the grader does not "
+        "run as root",
+        "course_kit grade: " + course_kit.sandbox.PROCESS_LIMIT]
+
+
+def test_grade_says_what_the_unprivileged_user_may_read_when_it_takes_that_isolation(
+        monkeypatch, tmp_path, capsys):
+    monkeypatch.setattr(course_kit.sandbox, "choose", lambda requested=None: (
+        course_kit.sandbox.Isolation("unprivileged user", "bwrap is not installed")))
+    monkeypatch.setattr(course_kit.grader, "grade_folder", lambda *args, **options: [])
+    args = course_kit.__main__.parse_args(["grade", str(tmp_path), "--out",
+                                           str(tmp_path / "results")])
+    course_kit.grader.main(args)
+    err, = capsys.readouterr().err.splitlines()
+    assert err.startswith("course_kit grade: in the unprivileged user's isolation any copy "
+                          "of the finished framework that all users may read is in the "
+                          "students' reach")
+    assert "keep your checkouts private" in err
+
+
+def test_the_autograders_setup_says_in_one_line_when_the_image_cannot_sandbox(
+        monkeypatch, capsys):
+    cannot_sandbox(monkeypatch)
+    refusal = course_kit.autograder.check()
+    assert capsys.readouterr().out == f"PyRT's autograder: WARNING: {refusal}\n"
+    assert refusal.startswith("this machine cannot sandbox the students' code: bwrap is not "
+                              "installed (apt-get install bubblewrap)")
+    assert refusal.endswith("run_autograder grades here only with AUTOGRADER_ISOLATION="
+                            "process, and then " + course_kit.sandbox.PROCESS_LIMIT)
+    assert "-m course_kit.autograder check" in course_kit.autograder.SETUP_SH
+    monkeypatch.setattr(course_kit.sandbox, "why_no_bubblewrap", lambda: None)
+    assert course_kit.autograder.check() is None
+    assert capsys.readouterr().out == ("PyRT's autograder: the isolation of each step: "
+                                       "bubblewrap\n")
 
 
 def test_the_grader_says_which_isolation_it_uses_in_the_terminal_and_the_record(
@@ -346,3 +437,16 @@ def test_an_unprivileged_user_is_refused_where_the_graders_folders_are_open(hand
     with pytest.raises(course_kit.sandbox.IsolationUnavailable, match="chmod 700"):
         grade(open_folder, {"right": {}}, handout, results=results,
               isolation="unprivileged user")
+
+
+def test_a_step_users_lock_is_held_once_and_its_file_goes_when_given_back(monkeypatch,
+                                                                           tmp_path):
+    monkeypatch.setattr(course_kit.sandbox, "LOCKS", str(tmp_path))
+    lock = course_kit.sandbox._lock_user(7)
+    assert lock is not None
+    assert course_kit.sandbox._lock_user(7) is None  # held: another grader passes it by
+    course_kit.sandbox._release_user(7, lock)
+    assert list(tmp_path.iterdir()) == []  # grading leaves /tmp as it found it
+    again = course_kit.sandbox._lock_user(7)
+    assert again is not None
+    course_kit.sandbox._release_user(7, again)
