@@ -18,6 +18,11 @@ import course_kit_students as students
 from helpers import REPO, SUBPROCESS_TIMEOUT, headless_env, run_python
 
 STEPS = list(course_kit.grader.STEP_TITLES)
+# Why run_autograder refuses to grade on this machine with the isolation it chooses (no
+# bubblewrap, no unprivileged user), or None where it grades: where it refuses, the tests
+# that grade through it assert the refusal, then grade with AUTOGRADER_ISOLATION=process
+REFUSAL = course_kit.autograder.refusal_of(course_kit.sandbox.choose())
+GRADING_ISOLATION = None if REFUSAL is None else "process"
 
 
 @pytest.fixture(scope="module")
@@ -56,6 +61,15 @@ def run_autograder(root, python=sys.executable, isolation=None):
     return json.loads((root / "results" / "results.json").read_text()), ran
 
 
+def assert_refused(results, ran):
+    """run_autograder refused to grade, saying why and what process isolation means."""
+    assert ran.returncode == 0, ran.stdout + ran.stderr
+    assert results["score"] == 0 and results["tests"] == []
+    assert results["output"] == ("The autograder failed, and your course staff can see "
+                                 f"why: IsolationUnavailable: {REFUSAL}")
+    assert_gradescopes_format(results)
+
+
 def assert_gradescopes_format(results):
     """results has the fields and types of Gradescope's results.json."""
     assert isinstance(results["score"], (int, float))
@@ -91,7 +105,9 @@ def test_the_finished_framework_gets_every_point_through_run_autograder(autograd
     root = autograder_root(autograder_zip, tmp_path)
     for name in course_kit.handout.COURSE_MODULES:
         shutil.copyfile(REPO / name, root / "submission" / name)
-    results, ran = run_autograder(root)
+    if REFUSAL is not None:
+        assert_refused(*run_autograder(root))
+    results, ran = run_autograder(root, isolation=GRADING_ISOLATION)
     assert ran.returncode == 0, ran.stdout + ran.stderr
     assert_gradescopes_format(results)
     assert results["score"] == 100
@@ -105,7 +121,7 @@ def test_the_untouched_handout_gets_none_with_each_steps_message(autograder_zip,
     root = autograder_root(autograder_zip, tmp_path)
     for name in course_kit.handout.COURSE_MODULES:
         shutil.copyfile(handout / name, root / "submission" / name)
-    results, _ = run_autograder(root)
+    results, _ = run_autograder(root, isolation=GRADING_ISOLATION)
     assert_gradescopes_format(results)
     assert results["score"] == 0
     outputs = {test["number"]: test["output"] for test in results["tests"]}
@@ -123,7 +139,7 @@ def test_a_zip_with_its_modules_in_a_folder_and_extra_files_is_graded_as_grade_d
         archive.writestr("practice1/venv/lib/PyRT_Core.py", "raise SystemExit('decoy')\n")
         archive.writestr("practice1/__pycache__/PyRT_Core.cpython-310.pyc", b"\0")
         archive.writestr("practice1/.idea/workspace.xml", "<project/>\n")
-    results, _ = run_autograder(root)
+    results, _ = run_autograder(root, isolation=GRADING_ISOLATION)
     assert_gradescopes_format(results)
     assert [test["score"] for test in results["tests"]] == [25, 25, 25, 0]
     assert "not divided by r^2" in results["tests"][3]["output"]
@@ -133,7 +149,8 @@ def test_a_zip_with_its_modules_in_a_folder_and_extra_files_is_graded_as_grade_d
     students.write_submission(folder / "student", handout,
                               students.VARIANTS["no_inverse_square"])
     record, = course_kit.grader.grade_folder(folder, tmp_path / "graded",
-                                         course_kit.grader.load_config(), progress=False)
+                                         course_kit.grader.load_config(), progress=False,
+                                         isolation=GRADING_ISOLATION)
     local = course_kit.feedback.gradescope_results(record)
     for outcome in (results, local):
         del outcome["execution_time"]
@@ -224,7 +241,11 @@ def test_run_autograder_refuses_process_isolation_unless_it_is_asked_for(
         shutil.copyfile(REPO / name, root / "submission" / name)
     refused = course_kit.autograder.run(root)
     assert refused["score"] == 0 and refused["tests"] == []
-    assert refused["output"].startswith("The autograder failed, and your course staff can "
-                                        "see why: IsolationUnavailable: neither bubblewrap "
-                                        "nor an unprivileged user can run here")
+    assert refused["output"] == (
+        "The autograder failed, and your course staff can see why: IsolationUnavailable: "
+        "this machine cannot sandbox the students' code: no bubblewrap; no unprivileged "
+        "user; run_autograder grades here only with AUTOGRADER_ISOLATION=process, and then "
+        "in process isolation the students' code runs as the grader's user: it can read "
+        "and change whatever the grader can (the finished framework, the expected data, "
+        "the results)")
     assert course_kit.autograder.run(root, isolation="process")["score"] == 100
