@@ -444,10 +444,10 @@ def main(args):
         if args.jobs is not None and args.jobs < 1:
             raise ValueError(f"--jobs must be 1 or more, got {args.jobs}")
         isolation = course_kit.sandbox.choose(args.isolation)
-        for line in (course_kit.sandbox.cannot_sandbox(isolation),
-                     course_kit.sandbox.limit_of(isolation)):
-            if line:
-                print(f"course_kit grade: {line}", file=sys.stderr, flush=True)
+        said = "; ".join(line for line in (course_kit.sandbox.cannot_sandbox(isolation),
+                                            course_kit.sandbox.limit_of(isolation)) if line)
+        if said:  # one line, before anything is graded
+            print(f"course_kit grade: {said}", file=sys.stderr, flush=True)
         records = grade_folder(args.submissions, args.out, config, args.jobs, args.force,
                                isolation=args.isolation)
     except (ValueError, FileNotFoundError) as error:
