@@ -172,7 +172,8 @@ def why_no_unprivileged_user():
     if private is not None:
         return (f"this Python ({python}) lies under {private}, which other users cannot "
                 f"enter: grade with {ANOTHER_PYTHON}")
-    return f"another user cannot run this Python ({python}) with numpy: grade with {ANOTHER_PYTHON}"
+    return (f"another user cannot run this Python ({python}) with numpy: grade with "
+            f"{ANOTHER_PYTHON}")
 
 
 def private_folder(path):
