@@ -92,10 +92,12 @@ def collect_samples(function_list, sample_pos_):
 def compute_estimate_cmc(sample_prob_, sample_values_):
     """The classic Monte Carlo estimate (1/N) sum f(omega_j) / p(omega_j) of the red
     channel, from the densities p and the values f of N samples."""
+    # ASSIGNMENT 2.1 BEGIN
     total = 0.0
     for prob, value in zip(sample_prob_, sample_values_):
         total += value.r / prob
     return total / len(sample_values_)
+    # ASSIGNMENT 2.1 END
 
 
 # ------------------------------------------------------------------------------------------
@@ -339,8 +341,10 @@ def main(argv=None) -> int:
 
     # The integrand, the methods and the experimental set-up, as the course names them
     integrand = INTEGRANDS[args.integrand]
-    methods = [Method("MC", "o", PDFS[args.pdf], args.pdf),
-               Method("MC IS", "v", PDFS[IMPORTANCE_PDF], IMPORTANCE_PDF)]
+    methods = [Method("MC", "o", PDFS[args.pdf], args.pdf)]
+    # FRAMEWORK ONLY BEGIN
+    methods.append(Method("MC IS", "v", PDFS[IMPORTANCE_PDF], IMPORTANCE_PDF))
+    # FRAMEWORK ONLY END
     ns_min, ns_max, ns_step = args.ns_min, args.ns_max, args.ns_step
     ns_vector = np.arange(start=ns_min, stop=ns_max, step=ns_step)
     n_estimates = args.estimates

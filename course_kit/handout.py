@@ -1,5 +1,5 @@
-"""The students' handout of Practice 1, made from this framework (`python -m course_kit
-handout DIR`).
+"""The students' handout of a practice, made from this framework (`python -m course_kit
+handout [--practice N] DIR`, Practice 1 by default).
 
 The parts that students write are marked in the finished framework, each block of solution
 between two comment lines at the same indentation:
@@ -8,8 +8,11 @@ between two comment lines at the same indentation:
     ...the solution...
     # ASSIGNMENT 1.2 END
 
-The handout has the course's stub in its place (STUBS below, the 2025-26 handout's), at the
-block's indentation. Blocks between "# FRAMEWORK ONLY BEGIN" and "# FRAMEWORK ONLY END" are
+The handout of Practice N has the course's stub in place of each block of a step of
+Practice N or later (STUBS below, the 2025-26 handout's), at the block's indentation, and
+keeps the blocks of the earlier practices without their markers: Practice 2's handout is
+Practice 1 finished (course_kit/practices.py lists what each practice's handout holds).
+Blocks between "# FRAMEWORK ONLY BEGIN" and "# FRAMEWORK ONLY END" are
 left out of the handout entirely: they use machinery that the handout does not ship. An
 unbalanced, nested, misspelt or unknown marker stops the kit with the file and the line.
 
@@ -20,13 +23,16 @@ import textwrap
 from pathlib import Path
 from typing import NamedTuple, Optional
 
+from course_kit.practices import PRACTICES, practice_of
+
 REPO = Path(__file__).resolve().parent.parent  # the folder of AppRenderer.py
 KIT = REPO / "course_kit"
 CHECKS = KIT / "checks"
 EXPECTED = CHECKS / "expected" / "practice1.npz"
 
 # What students write in, made from the framework by replacing the marked blocks
-COURSE_MODULES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppRenderer.py")
+# (Practice 1's; course_kit/practices.py has every practice's)
+COURSE_MODULES = PRACTICES[1].modules
 # What AppRenderer.py needs besides them, shipped as it is
 # (pyrt/: only the part of the machinery that the handout's modules import)
 SHIPPED_AS_IS = ("pyrt/__init__.py", "pyrt/images.py", "pyrt/environment_maps.py",
@@ -35,10 +41,6 @@ SHIPPED_AS_IS = ("pyrt/__init__.py", "pyrt/images.py", "pyrt/environment_maps.py
 # The course's figures, which pyrt/compare.py finds in references/
 FIGURES = ("figure1_phong.png", "figure2_lazy.png", "figure3_intersection.png",
            "figure4_depth.png", "figure4_normal.png", "figure5_phong.png")
-# The students' checks: course_kit/checks/<name> goes to tests/<name> in the handout
-CHECK_FILES = ("practice1_checks.py", "practice1_render.py", "test_practice1.py")
-# The packages the handout needs, with the framework's version bounds
-HANDOUT_PACKAGES = ("numpy", "opencv-python-headless", "matplotlib", "pytest")
 PYTEST_INI = "[pytest]\ntestpaths = tests\npythonpath = .\naddopts = -ra\n"
 
 # ------------------------------------------------------------------------------------------
@@ -58,13 +60,31 @@ def render(self):
     print()
     self.scene.save_image(self.get_filename())
 '''
+# Integrator's render methods in the handouts after Practice 1: the loop that Assignments
+# 1.1 and 1.2 finish, in the course's style (the framework's own needs PyRT's machinery)
+FINISHED_RENDER = '''\
+def render(self):
+    # The render loop of Assignments 1.1 and 1.2, finished: each pixel gets the colour
+    # arriving along the ray from the camera through its centre.
+    cam = self.scene.camera
+    print("Rendering " + self.get_filename())
+    for x in range(cam.width):
+        for y in range(cam.height):
+            ray = Ray(Vector3D(0.0, 0.0, 0.0), cam.get_direction(x, y))
+            self.scene.set_pixel(self.compute_color(ray), x, y)
+        print(f"\\r  progress: {100 * (x + 1) / cam.width:.0f}%", end="")
+    print()
+    self.scene.save_image(self.get_filename())
+'''
 # A body stub: the course's comment, then what the method does until the student writes it
-BODY_STUBS = {"any_hit": "return False", "compute_color": "pass"}
+BODY_STUBS = {"any_hit": "return False", "compute_color": "pass",
+              "compute_estimate_cmc": "return 0"}
 # Where each step's blocks may stand: "class" for whole methods, else the methods whose
 # body they are
 STEP_PLACES = {"1.1-1.2": {"class"}, "1.2": {"any_hit", "compute_color"},
                "1.3": {"compute_color"}, "1.4": {"compute_color"},
-               "2.3": {"compute_color"}}  # Practice 2's CMCIntegrator, a stub in Practice 1
+               "2.1": {"compute_estimate_cmc"},  # Practice 2's workbench
+               "2.3": {"compute_color"}}  # Practice 2's CMCIntegrator
 FRAMEWORK_ONLY = "FRAMEWORK ONLY"
 
 MARKER = re.compile(r"(?P<indent>[ ]*)# (?P<kind>ASSIGNMENT (?P<step>\S+)|FRAMEWORK ONLY) "
@@ -164,10 +184,12 @@ def marked_blocks(source, filename):
     return found
 
 
-def strip_solution(source, filename):
-    """The handout's version of a framework module: every marked block replaced by its
-    stub, or dropped when FRAMEWORK ONLY (with one of the blank lines around it, when both
-    are blank). Raises MarkerError as marked_blocks does."""
+def strip_solution(source, filename, practice=1):
+    """The handout of Practice `practice`'s version of a framework module: every block of a
+    step of that practice or a later one replaced by its stub, every block of an earlier
+    practice kept without its markers, every FRAMEWORK ONLY block dropped (with one of the
+    blank lines around it, when both are blank). Raises MarkerError as marked_blocks
+    does."""
     lines = source.splitlines(keepends=True)
     out, taken = [], 0  # taken: the lines of source dealt with so far
     for block in marked_blocks(source, filename):
@@ -176,44 +198,52 @@ def strip_solution(source, filename):
         if block.kind == FRAMEWORK_ONLY:
             if out and not out[-1].strip() and taken < len(lines) and not lines[taken].strip():
                 out.pop()
+        elif practice_of(block.step) < practice:  # solved in an earlier practice
+            out += (textwrap.indent(FINISHED_RENDER, block.indent).splitlines(keepends=True)
+                    if block.place == "class" else lines[block.begin:block.end - 1])
         else:
             out += _stub(block.step, block.place, block.indent)
     return "".join(out + lines[taken:])
 
 
-def _requirements():
-    """requirements.txt of the handout: the framework's lines for HANDOUT_PACKAGES."""
+def _requirements(packages):
+    """requirements.txt of a handout: the framework's lines for its packages."""
     lines = []
     for name in ("requirements.txt", "requirements-dev.txt"):
         for line in (REPO / name).read_text(encoding="utf-8").splitlines():
             package = re.match(r"[A-Za-z0-9_.-]+", line)
-            if package and package[0].lower() in HANDOUT_PACKAGES:
+            if package and package[0].lower() in packages:
                 lines.append(line)
     return "# What the handout needs: pip install -r requirements.txt\n" + "\n".join(
         lines) + "\n"
 
 
-def handout_files():
-    """Every file of the handout, {relative path: bytes}, sorted by path."""
-    files = {name: strip_solution((REPO / name).read_text(encoding="utf-8"), name).encode()
-             for name in COURSE_MODULES}
+def handout_files(practice=1):
+    """Every file of the handout of Practice `practice`, {relative path: bytes}, sorted by
+    path."""
+    kind = PRACTICES[practice]
+    files = {name: strip_solution((REPO / name).read_text(encoding="utf-8"), name,
+                                  practice).encode()
+             for name in kind.modules}
     files.update({name: (REPO / name).read_bytes() for name in SHIPPED_AS_IS})
     files.update({f"references/{name}": (REPO / "references" / name).read_bytes()
                   for name in FIGURES})
-    files.update({f"tests/{name}": (CHECKS / name).read_bytes() for name in CHECK_FILES})
-    files["tests/expected/practice1.npz"] = EXPECTED.read_bytes()
-    files["requirements.txt"] = _requirements().encode()
+    files.update({f"tests/{name}": (CHECKS / name).read_bytes() for name in kind.check_files})
+    files.update({f"tests/expected/{name}": (CHECKS / "expected" / name).read_bytes()
+                  for name in kind.expected})
+    files["requirements.txt"] = _requirements(kind.packages).encode()
     files["pytest.ini"] = PYTEST_INI.encode()
     files["out/.gitkeep"] = b""
     return dict(sorted(files.items()))
 
 
-def write_handout(directory):
-    """Writes the handout into directory, which must be empty or not exist yet."""
+def write_handout(directory, practice=1):
+    """Writes the handout of Practice `practice` into directory, which must be empty or
+    not exist yet."""
     directory = Path(directory)
     if directory.exists() and any(directory.iterdir()):
         raise FileExistsError(f"{directory} is not empty; the handout goes into a new folder")
-    for name, content in handout_files().items():
+    for name, content in handout_files(practice).items():
         path = directory / name
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_bytes(content)

@@ -17,7 +17,8 @@ from typing import NamedTuple, Tuple
 import numpy as np
 
 SIZE = 40  # pixels, width and height of every image of the published checks
-STUDENT_FILES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppRenderer.py")
+STUDENT_FILES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py", "AppRenderer.py",
+                 "AppWorkbench.py")
 ERROR_TEXT = 4000  # characters of an error's text and traceback kept
 
 
