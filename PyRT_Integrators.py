@@ -14,6 +14,7 @@ import pyrt.explain
 from pyrt.images import native_path
 # FRAMEWORK ONLY BEGIN
 from pyrt.acceleration.fingerprints import register_fused
+from pyrt.gaussian_pools import check_gp_pool
 from pyrt.rendering import check_render, rendered_blocks
 from pyrt.rows import not_a_color, sampled_row
 from pyrt.sampling import ADAPTIVE_TOLERANCE
@@ -22,6 +23,7 @@ from pyrt.sampling import ADAPTIVE_TOLERANCE
 __all__ = _common_names + [
     "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
     "NormalIntegrator", "PhongIntegrator", "CMCIntegrator", "BayesianMonteCarloIntegrator",
+    "CMCISIntegrator", "BMCISIntegrator",
 ]
 
 
@@ -61,6 +63,20 @@ class Integrator(ABC):
     @abstractmethod
     def compute_color(self, ray):
         """The RGBColor arriving along ray."""
+
+    def incoming_light(self, point, direction):
+        """L_i, the light arriving at point from direction (a unit vector): the emission of
+        the object that the ray from point along direction hits first, or, when it hits
+        nothing, the scene's environment map in that direction (BLACK without one)."""
+        # ASSIGNMENT 2.3 BEGIN
+        scene = self.scene
+        hit = scene.closest_hit(Ray(point, direction))
+        if hit.has_hit:
+            return scene.object_list[hit.primitive_index].emission
+        if scene.env_map is not None:
+            return scene.env_map.getValue(direction)
+        return BLACK  # nothing there, and no map: no light from this direction
+        # ASSIGNMENT 2.3 END
 
     def explain_pixel(self, x, y):
         """Why pixel (x, y) has its colour: compute_color run again on the pixel's camera
@@ -268,12 +284,18 @@ class CMCIntegrator(Integrator):
     L_i(omega_j) is the emission of the object the ray from p along omega_j hits, or, when
     it hits nothing, the scene's environment map in that direction (black without one).
     The Lambertian's get_value already holds the cosine. A camera ray that hits nothing
-    sees the environment map; the emission of the object it hits is not added."""
+    sees the environment map; the emission of the object it hits is not added.
 
-    def __init__(self, n, filename_, experiment_name=""):
-        filename_mc = filename_ + "_MC_" + str(n) + "_samples" + experiment_name
+    pdf is the density the directions are drawn from: UniformPDF() by default, p = 1/(2 pi);
+    CosinePDF(1) (p = cos/pi) samples by importance (Practice 4). A pdf other than the
+    uniform one is named in the file name, _MC_cos1_<n>_samples for CosinePDF(1)."""
+
+    def __init__(self, n, filename_, experiment_name="", pdf=UniformPDF()):
+        filename_mc = (filename_ + "_MC_" + pdf_label(pdf) + str(n) + "_samples"
+                       + experiment_name)
         super().__init__(filename_mc)
         self.n_samples = n
+        self.pdf = pdf
 
     def compute_color(self, ray):
         # ASSIGNMENT 2.3 BEGIN
@@ -283,28 +305,71 @@ class CMCIntegrator(Integrator):
             return BLACK if scene.env_map is None else scene.env_map.getValue(ray.d)
         brdf = scene.object_list[hit.primitive_index].get_BRDF()
         wo = Vector3D(0.0, 0.0, 0.0)  # unused by the Lambertian BRDF
-        sample_set, sample_prob = sample_set_hemisphere(self.n_samples, UniformPDF())
+        sample_set, sample_prob = sample_set_hemisphere(self.n_samples, self.pdf)
         color = RGBColor(0.0, 0.0, 0.0)
         for omega, prob in zip(sample_set, sample_prob):
             wi = center_around_normal(omega, hit.normal)
-            sample_hit = scene.closest_hit(Ray(hit.hit_point, wi))
-            if sample_hit.has_hit:
-                l_i = scene.object_list[sample_hit.primitive_index].emission
-            elif scene.env_map is not None:
-                l_i = scene.env_map.getValue(wi)
-            else:
-                continue  # nothing there, and no map: no light from omega
+            l_i = self.incoming_light(hit.hit_point, wi)
             color = color + l_i.multiply(brdf.get_value(wi, wo, hit.normal)) / prob
         return color / self.n_samples
         # ASSIGNMENT 2.3 END
 
 
+# FRAMEWORK ONLY BEGIN
+def pdf_label(pdf):
+    """The part of a Monte Carlo integrator's file name that names its pdf: '' for
+    UniformPDF (the course's names), 'cos<exp>_' for CosinePDF(exp), else the pdf's class
+    name and '_'; a TypeError for what is not a PDF."""
+    if not (callable(getattr(pdf, "get_val", None))
+            and callable(getattr(pdf, "generate_dir", None))):
+        raise TypeError(f"pdf must be a PDF such as UniformPDF() or CosinePDF(1) (with "
+                        f"get_val and generate_dir), got {pdf!r}")
+    if type(pdf) is UniformPDF:
+        return ""
+    if type(pdf) is CosinePDF:
+        return f"cos{pdf.exp:g}_" if is_number(pdf.exp) else f"cos{pdf.exp}_"
+    return type(pdf).__name__ + "_"
+# FRAMEWORK ONLY END
+
+
 # ------------------------------------------------------------------------------------------
-# Bayesian Monte Carlo integrator (Practice 3: the course's stub)
+# Classic Monte Carlo with importance sampling (Practice 4, Part I)
+# ------------------------------------------------------------------------------------------
+class CMCISIntegrator(CMCIntegrator):
+    """Classic Monte Carlo with importance sampling: CMCIntegrator's estimate with the
+    directions drawn from CosinePDF(1), p(omega) = cos(theta) / pi, the cosine that the
+    Lambertian's value holds. For a Lambertian under constant light L every term
+    L (kd cos) / (cos / pi) is the same, L kd pi: the white furnace has no noise at all.
+    File name filename_ + '_MC_cos1_' + n + '_samples' + experiment_name, as
+    CMCIntegrator(n, filename_, experiment_name, pdf=CosinePDF(1)), the same render."""
+
+    def __init__(self, n, filename_, experiment_name=""):
+        # ASSIGNMENT 4.1 BEGIN
+        super().__init__(n, filename_, experiment_name, pdf=CosinePDF(1))
+        # ASSIGNMENT 4.1 END
+
+
+# ------------------------------------------------------------------------------------------
+# Bayesian Monte Carlo integrator (Practice 3, Assignments 3.3 and 3.3.2)
 # ------------------------------------------------------------------------------------------
 class BayesianMonteCarloIntegrator(Integrator):
-    """Bayesian Monte Carlo estimate of the light reflected towards the camera, with the
-    Gaussian process myGP: Practice 3 of the course, still its stub here."""
+    """The light reflected towards the camera at the closest hit p with normal n, estimated
+    by Bayesian Monte Carlo: a Gaussian process over the hemisphere, given the values Y_j
+    of the integrand at its sample directions omega_j, has the integral
+
+        L_o = sum over j of w_j Y_j,    Y_j = L_i(omega_j) (x) BRDF.get_value(omega_j, wo, n)
+
+    with the weights w = z^T Q^-1 of the GP (GaussianProcess.py). Q and z depend only on
+    the directions' positions relative to each other, so one GP's weights serve every hit:
+    its sample set is turned to the hit's normal (center_around_normal). The Lambertian's
+    value holds the cosine, so the GP models the whole integrand (p = 1 in its z).
+
+    myGP is one GP, or a list of GPs (a pool) of the same number of samples, each given its
+    sample positions (add_sample_pos) before the integrator receives it. The same sample
+    set at every hit leaves a pattern in the image; Assignment 3.3.2 breaks it: at each hit
+    a GP of the pool chosen at random, its set turned about +y by a random angle
+    (rotate_around_y) before it is centred. L_i is as in CMCIntegrator.
+    File name filename_ + '_BMC_' + n + '_samples' + experiment_name."""
 
     def __init__(self, n, myGP, filename_, experiment_name=""):
         filename_bmc = filename_ + "_BMC_" + str(n) + "_samples" + experiment_name
@@ -312,8 +377,79 @@ class BayesianMonteCarloIntegrator(Integrator):
         self.n_samples = n
         self.myGP = myGP
 
+    # FRAMEWORK ONLY BEGIN
+    cosine_prior = False  # whether the GPs' p must be the cosine (BMCISIntegrator's)
+
+    def check_inputs(self):
+        """Before a render: the error that says what to fix in myGP, if anything."""
+        check_gp_pool(type(self).__name__, self.myGP, self.n_samples, self.cosine_prior)
+    # FRAMEWORK ONLY END
+
     def compute_color(self, ray):
-        pass
+        # ASSIGNMENT 3.3 BEGIN
+        scene = self.scene
+        hit = scene.closest_hit(ray)
+        if not hit.has_hit:
+            return BLACK if scene.env_map is None else scene.env_map.getValue(ray.d)
+        brdf = scene.object_list[hit.primitive_index].get_BRDF()
+        wo = Vector3D(0.0, 0.0, 0.0)  # unused by the Lambertian BRDF
+        gp, alpha = self.pick_sample_set()
+        sample_values = []
+        for omega in gp.samples_pos:
+            wi = center_around_normal(rotate_around_y(alpha, omega), hit.normal)
+            l_i = self.incoming_light(hit.hit_point, wi)
+            sample_values.append(self.sample_value(l_i, brdf, wi, wo, hit.normal))
+        gp.add_sample_val(sample_values)
+        return gp.compute_integral_BMC()
+        # ASSIGNMENT 3.3 END
+
+    def pick_sample_set(self):
+        """(gp, alpha): the GP whose sample set estimates this hit's light and the angle, in
+        radians, by which the set turns about +y: a GP of the pool drawn at random, then an
+        angle drawn uniformly in [0, 2 pi), each from random()."""
+        # ASSIGNMENT 3.3.2 BEGIN
+        pool = self.myGP if isinstance(self.myGP, (list, tuple)) else [self.myGP]
+        gp = pool[floor(random() * len(pool))]
+        alpha = 2 * pi * random()
+        return gp, alpha
+        # ASSIGNMENT 3.3.2 END
+
+    def sample_value(self, l_i, brdf, wi, wo, normal):
+        """Y_j, the value the GP is given for the sample direction wi: L_i times the BRDF's
+        value, which holds the cosine."""
+        # ASSIGNMENT 3.3 BEGIN
+        return l_i.multiply(brdf.get_value(wi, wo, normal))
+        # ASSIGNMENT 3.3 END
+
+
+# ------------------------------------------------------------------------------------------
+# Bayesian Monte Carlo with importance sampling (Practice 4, Part II)
+# ------------------------------------------------------------------------------------------
+class BMCISIntegrator(BayesianMonteCarloIntegrator):
+    """Bayesian Monte Carlo with the cosine as prior knowledge: the integrand is f p with
+    p = cos(theta) known and f = L_i kd for a Lambertian, so the GP models f alone,
+
+        L_o = sum over j of w_j Y_j,    Y_j = L_i(omega_j) (x) kd,
+
+    with GPs whose z integrates k p: GP(SobolevCov(), CosineLobe(1)), their sample
+    positions drawn from CosinePDF(1). Everything else is BayesianMonteCarloIntegrator's.
+    File name filename_ + '_BMCIS_' + n + '_samples' + experiment_name."""
+
+    # FRAMEWORK ONLY BEGIN
+    cosine_prior = True
+    # FRAMEWORK ONLY END
+
+    def __init__(self, n, myGP, filename_, experiment_name=""):
+        super().__init__(n, myGP, filename_, experiment_name)
+        self.filename = native_path(filename_ + "_BMCIS_" + str(n) + "_samples"
+                                    + experiment_name)
+
+    def sample_value(self, l_i, brdf, wi, wo, normal):
+        """Y_j for the GP of f alone: L_i times kd, the Lambertian's value without its
+        cosine, which the GP's p holds."""
+        # ASSIGNMENT 4.2 BEGIN
+        return l_i.multiply(brdf.kd)
+        # ASSIGNMENT 4.2 END
 
 
 # FRAMEWORK ONLY BEGIN
@@ -321,4 +457,5 @@ class BayesianMonteCarloIntegrator(Integrator):
 # may stand in for them, and only while their source is unchanged (pyrt/acceleration/)
 register_fused("phong", PhongIntegrator)
 register_fused("cmc", CMCIntegrator)
+register_fused("bmc", BayesianMonteCarloIntegrator)
 # FRAMEWORK ONLY END

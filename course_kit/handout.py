@@ -81,10 +81,17 @@ BODY_STUBS = {"any_hit": "return False", "compute_color": "pass",
               "compute_estimate_cmc": "return 0"}
 # Where each step's blocks may stand: "class" for whole methods, else the methods whose
 # body they are
+# (Practices 2 to 4: their integrators are stubs in Practice 1)
 STEP_PLACES = {"1.1-1.2": {"class"}, "1.2": {"any_hit", "compute_color"},
                "1.3": {"compute_color"}, "1.4": {"compute_color"},
                "2.1": {"compute_estimate_cmc"},  # Practice 2's workbench
-               "2.3": {"compute_color"}}  # Practice 2's CMCIntegrator
+               "2.3": {"compute_color", "incoming_light"},
+               "3.3": {"compute_color", "sample_value"}, "3.3.2": {"pick_sample_set"},
+               "4.1": {"__init__"}, "4.2": {"sample_value"}}
+# The steps whose stub does what the step before them does, so that the rest still runs:
+# one GP unturned (Assignment 3.3 before 3.3.2), the uniform pdf (Practice 2's)
+STEP_STUBS = {"3.3.2": "return self.myGP, 0.0",
+              "4.1": "super().__init__(n, filename_, experiment_name)"}
 FRAMEWORK_ONLY = "FRAMEWORK ONLY"
 
 MARKER = re.compile(r"(?P<indent>[ ]*)# (?P<kind>ASSIGNMENT (?P<step>\S+)|FRAMEWORK ONLY) "
@@ -104,7 +111,8 @@ def _stub(step, place, indent):
     if place == "class":
         text = RENDER_STUB
     else:
-        text = f"# ASSIGNMENT {step}: PUT YOUR CODE HERE\n{BODY_STUBS[place]}\n"
+        body = STEP_STUBS.get(step) or BODY_STUBS.get(place, "pass")
+        text = f"# ASSIGNMENT {step}: PUT YOUR CODE HERE\n{body}\n"
     return textwrap.indent(text, indent).splitlines(keepends=True)
 
 

@@ -55,6 +55,9 @@ def check_render(integrator, workers, samples_per_pixel, adaptive=False,
         raise NotImplementedError(f"{name}.render: {name}.compute_color is still the "
                                   "course's stub (its body is `pass`): write it before "
                                   f"rendering with {name}")
+    check_inputs = getattr(integrator, "check_inputs", None)
+    if check_inputs is not None:  # what an integrator checks of its own inputs (a GP pool)
+        check_inputs()
     samples = _check_count("samples_per_pixel", samples_per_pixel)
     if workers is not None:
         workers = _check_count("workers", workers, "None (all cores) or a whole number >= 1")

@@ -10,7 +10,8 @@ import pytest
 from hypothesis import settings
 
 import pyrt.workers
-from helpers import APP, HeldBackWorker, run_python, wait_for_worker
+from helpers import APP, HeldBackWorker, counted_calls, run_python, wait_for_worker
+from pyrt.acceleration.monte_carlo import AcceleratedCMC
 
 settings.register_profile("repeatable", derandomize=True)
 settings.register_profile("hunt", derandomize=False)
@@ -58,3 +59,9 @@ def worker_first(monkeypatch, tmp_path):
                             HeldBackWorker(str(marker), str(taken), raise_in_worker))
         return marker
     return install
+
+
+@pytest.fixture
+def fused_calls(monkeypatch):
+    """The number of camera rays AcceleratedCMC has answered, as a one-element list."""
+    return counted_calls(monkeypatch, AcceleratedCMC)

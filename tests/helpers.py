@@ -17,9 +17,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from AppRenderer import cornell_box_scene
+from AppRenderer import cornell_box_scene, sphere_scene
 import pyrt.acceleration.queries
 import pyrt.workers
+from pyrt.environment_maps import constant_map, sky_map
 from PyRT_Core import *
 from PyRT_Integrators import *
 
@@ -365,3 +366,92 @@ class RandomGrey(Integrator):
     def compute_color(self, ray):
         grey = random()
         return RGBColor(grey, grey, grey)
+
+
+# ------------------------------------------------------------------------------------------
+# Monte Carlo scenes whose light is known in closed form
+# ------------------------------------------------------------------------------------------
+ALBEDO = (0.25, 0.5, 0.75)  # c, a colour, so that each channel is checked on its own
+RADIANCE = 1.5  # L of the furnace: a float32 number exactly (np.float32(1.5) == 1.5)
+# The furnace: a sphere of radius 1.5, 2 in front of a 90 degree camera, fills most of it
+FURNACE_CENTRE, FURNACE_RADIUS = (0.0, 0.0, -2.0), 1.5
+EMISSION = (1.0, 2.0, 3.0)  # E of the emitters
+
+
+def lambertian(primitive, albedo):
+    primitive.set_BRDF(Lambertian(RGBColor(*albedo)))
+    return primitive
+
+
+def furnace_scene(size, radiance=RADIANCE):
+    """A Lambertian sphere of albedo ALBEDO alone under a constant environment map."""
+    scene = Scene()
+    scene.add_object(lambertian(Sphere(Vector3D(*FURNACE_CENTRE), FURNACE_RADIUS), ALBEDO))
+    scene.set_camera(Camera(size, size, 90))
+    scene.env_map = EnvironmentMap.from_texels(constant_map(radiance))
+    return scene
+
+
+def sphere_pixels(camera, centre, radius):
+    """(hit, normals): which pixels' camera rays hit the sphere, and the outward unit normal
+    where they do, from the ray-sphere quadratic in closed form. No pixel lies within
+    1e-6 of the silhouette, where rounding could decide."""
+    hit = np.zeros((camera.height, camera.width), dtype=bool)
+    normals = np.zeros((camera.height, camera.width, 3))
+    c = np.array(centre)
+    for y in range(camera.height):
+        for x in range(camera.width):
+            d = camera.get_direction(x, y)
+            d = np.array([d.x, d.y, d.z])
+            b = d @ c
+            disc = b * b - (c @ c - radius * radius)
+            assert abs(disc) > 1e-6, (x, y)
+            if disc > 0.0:
+                hit[y, x] = True
+                normals[y, x] = ((b - math.sqrt(disc)) * d - c) / radius
+    return hit, normals
+
+
+EMISSION = (1.0, 2.0, 3.0)
+
+
+def emitter(primitive, emission=EMISSION):
+    """An area light as the course makes one: emission, and a black Lambertian."""
+    primitive.emission = RGBColor(*emission)
+    return lambertian(primitive, (0.0, 0.0, 0.0))
+
+
+def emissive_box_scene(size):
+    """The furnace's sphere inside a closed box, camera included, whose six walls emit
+    EMISSION: every sample ray hits a wall, and L = E in every direction."""
+    scene = Scene()
+    scene.add_object(lambertian(Sphere(Vector3D(*FURNACE_CENTRE), FURNACE_RADIUS), ALBEDO))
+    low, high = Vector3D(-2.0, -2.0, -4.0), Vector3D(2.0, 2.0, 1.0)
+    x, y, z = Vector3D(4.0, 0.0, 0.0), Vector3D(0.0, 4.0, 0.0), Vector3D(0.0, 0.0, 5.0)
+    for corner, s1, s2 in [(low, x, y), (low, y, z), (low, z, x),
+                           (high, x * -1.0, y * -1.0), (high, y * -1.0, z * -1.0),
+                           (high, z * -1.0, x * -1.0)]:
+        scene.add_object(emitter(Parallelogram(corner, s1, s2)))
+    scene.set_camera(Camera(size, size, 90))
+    return scene
+
+
+def sky_sphere_scene(size):
+    """The course's sphere scene lit by PyRT's sky map."""
+    scene = sphere_scene(width=size, height=size)
+    scene.env_map = EnvironmentMap.from_texels(sky_map())
+    return scene
+
+
+def counted_calls(monkeypatch, fused_class):
+    """The number of camera rays fused_class.compute_color (a fused integrator's) answers
+    from now on, as a one-element list."""
+    calls = [0]
+    original = fused_class.compute_color
+
+    def counted(self, ray):
+        calls[0] += 1
+        return original(self, ray)
+
+    monkeypatch.setattr(fused_class, "compute_color", counted)
+    return calls

@@ -37,7 +37,8 @@ def test_star_import_gives_the_common_names_and_the_integrators():
     names = set(namespace) - {"__builtins__"}
     assert names == set(common) - {"__builtins__"} | {
         "Integrator", "LazyIntegrator", "IntersectionIntegrator", "DepthIntegrator",
-        "NormalIntegrator", "PhongIntegrator", "CMCIntegrator", "BayesianMonteCarloIntegrator"}
+        "NormalIntegrator", "PhongIntegrator", "CMCIntegrator", "BayesianMonteCarloIntegrator",
+        "CMCISIntegrator", "BMCISIntegrator"}
     assert all(namespace[name] is common[name] for name in common if name != "__builtins__")
 
 

@@ -20,60 +20,25 @@ import pyrt.acceleration.accelerated
 import pyrt.acceleration.fingerprints
 from AppRenderer import cornell_box_scene, sphere_scene
 from benchmarks.flat_loop import flat_cmc
-from helpers import course_renders, global_generator_kept, render_image  # noqa: F401
-from pyrt.acceleration.monte_carlo import OWN_OBJECT_CLEARANCE, AcceleratedCMC
-from pyrt.environment_maps import constant_map, sky_map
+from helpers import (ALBEDO, EMISSION, FURNACE_CENTRE, FURNACE_RADIUS, RADIANCE,  # noqa: F401
+                     course_renders, emissive_box_scene, emitter, furnace_scene,
+                     global_generator_kept, lambertian, render_image, sky_sphere_scene,
+                     sphere_pixels)
+from pyrt.acceleration.monte_carlo import OWN_OBJECT_CLEARANCE
+from pyrt.environment_maps import sky_map
 from pyrt.workers import START_METHOD_VARIABLE
-from PyRT_Common import (BLACK, Cross, Dot, EnvironmentMap, Length, Normalize, RGBColor, Ray,
+from PyRT_Common import (BLACK, Cross, Dot, EnvironmentMap, Length, Normalize, Ray,
                          UniformPDF, Vector3D, center_around_normal, sample_set_hemisphere)
-from PyRT_Core import Camera, InfinitePlane, Lambertian, Parallelogram, Scene, Sphere
-from PyRT_Integrators import BayesianMonteCarloIntegrator, CMCIntegrator
+from PyRT_Core import Camera, InfinitePlane, Parallelogram, Scene, Sphere
+from PyRT_Integrators import CMCIntegrator
 
 STANDARD_ERRORS = 5  # the width of every statistical tolerance
 FLOAT32_STEP = 2.0 ** -24  # the relative rounding of one float32 operation
-ALBEDO = (0.25, 0.5, 0.75)  # c, a colour, so that each channel is checked on its own
-RADIANCE = 1.5  # L of the furnace: a float32 number exactly (np.float32(1.5) == 1.5)
-# The furnace: a sphere of radius 1.5, 2 in front of a 90 degree camera, fills most of it
-FURNACE_CENTRE, FURNACE_RADIUS = (0.0, 0.0, -2.0), 1.5
 
 
 # ------------------------------------------------------------------------------------------
 # Scenes and what is known of them
 # ------------------------------------------------------------------------------------------
-def lambertian(primitive, albedo):
-    primitive.set_BRDF(Lambertian(RGBColor(*albedo)))
-    return primitive
-
-
-def furnace_scene(size, radiance=RADIANCE):
-    """A Lambertian sphere of albedo ALBEDO alone under a constant environment map."""
-    scene = Scene()
-    scene.add_object(lambertian(Sphere(Vector3D(*FURNACE_CENTRE), FURNACE_RADIUS), ALBEDO))
-    scene.set_camera(Camera(size, size, 90))
-    scene.env_map = EnvironmentMap.from_texels(constant_map(radiance))
-    return scene
-
-
-def sphere_pixels(camera, centre, radius):
-    """(hit, normals): which pixels' camera rays hit the sphere, and the outward unit normal
-    where they do, from the ray-sphere quadratic in closed form. No pixel lies within
-    1e-6 of the silhouette, where rounding could decide."""
-    hit = np.zeros((camera.height, camera.width), dtype=bool)
-    normals = np.zeros((camera.height, camera.width, 3))
-    c = np.array(centre)
-    for y in range(camera.height):
-        for x in range(camera.width):
-            d = camera.get_direction(x, y)
-            d = np.array([d.x, d.y, d.z])
-            b = d @ c
-            disc = b * b - (c @ c - radius * radius)
-            assert abs(disc) > 1e-6, (x, y)
-            if disc > 0.0:
-                hit[y, x] = True
-                normals[y, x] = ((b - math.sqrt(disc)) * d - c) / radius
-    return hit, normals
-
-
 def assert_mean_within(values, expected, sample_sd, samples, slack=0.0):
     """The mean of `values` (one estimate of n = samples samples per pixel, the pixels
     independent), channel by channel, is within STANDARD_ERRORS standard errors of
@@ -164,30 +129,6 @@ def test_white_furnace_catches_the_cosine_counted_twice(tmp_path):
 # ------------------------------------------------------------------------------------------
 # Emitters, and no environment map
 # ------------------------------------------------------------------------------------------
-EMISSION = (1.0, 2.0, 3.0)
-
-
-def emitter(primitive, emission=EMISSION):
-    """An area light as the course makes one: emission, and a black Lambertian."""
-    primitive.emission = RGBColor(*emission)
-    return lambertian(primitive, (0.0, 0.0, 0.0))
-
-
-def emissive_box_scene(size):
-    """The furnace's sphere inside a closed box, camera included, whose six walls emit
-    EMISSION: every sample ray hits a wall, and L = E in every direction."""
-    scene = Scene()
-    scene.add_object(lambertian(Sphere(Vector3D(*FURNACE_CENTRE), FURNACE_RADIUS), ALBEDO))
-    low, high = Vector3D(-2.0, -2.0, -4.0), Vector3D(2.0, 2.0, 1.0)
-    x, y, z = Vector3D(4.0, 0.0, 0.0), Vector3D(0.0, 4.0, 0.0), Vector3D(0.0, 0.0, 5.0)
-    for corner, s1, s2 in [(low, x, y), (low, y, z), (low, z, x),
-                           (high, x * -1.0, y * -1.0), (high, y * -1.0, z * -1.0),
-                           (high, z * -1.0, x * -1.0)]:
-        scene.add_object(emitter(Parallelogram(corner, s1, s2)))
-    scene.set_camera(Camera(size, size, 90))
-    return scene
-
-
 def test_sphere_in_an_emitting_box_gives_albedo_times_emission_and_the_walls_are_dark(
         tmp_path):
     samples = 16
@@ -325,13 +266,6 @@ def test_render_matches_the_courses_render_statistically(tmp_path, sky_renders):
 # ------------------------------------------------------------------------------------------
 # render()'s fast path: the plain code's image, bit for bit, and only where it may
 # ------------------------------------------------------------------------------------------
-def sky_sphere_scene(size):
-    """The course's sphere scene lit by PyRT's sky map."""
-    scene = sphere_scene(width=size, height=size)
-    scene.env_map = EnvironmentMap.from_texels(sky_map())
-    return scene
-
-
 def sky_over_infinite_floor(size):
     """A sphere on an InfinitePlane floor under PyRT's sky map."""
     scene = Scene()
@@ -350,20 +284,6 @@ FUSED_SCENES = {
     "emitting_infinite_plane": emitting_plane_scene,
     "sky_over_infinite_floor": sky_over_infinite_floor,
 }
-
-
-@pytest.fixture
-def fused_calls(monkeypatch):
-    """The number of camera rays AcceleratedCMC has answered, as a one-element list."""
-    calls = [0]
-    original = AcceleratedCMC.compute_color
-
-    def counted(self, ray):
-        calls[0] += 1
-        return original(self, ray)
-
-    monkeypatch.setattr(AcceleratedCMC, "compute_color", counted)
-    return calls
 
 
 def plain_render(tmp_path, monkeypatch, scene, samples, seed, **options):
@@ -454,18 +374,8 @@ def test_flat_loop_gives_renders_image_bit_for_bit(tmp_path, make):
 
 
 # ------------------------------------------------------------------------------------------
-# The integrators' names and the Practice 3 stub
+# The integrator's file name
 # ------------------------------------------------------------------------------------------
-def test_bayesian_render_says_in_one_line_that_it_is_the_courses_stub(tmp_path):
-    integrator = BayesianMonteCarloIntegrator(8, object(), str(tmp_path / "img"))
-    integrator.add_scene(furnace_scene(4))
-    with pytest.raises(NotImplementedError,
-                       match=r"^BayesianMonteCarloIntegrator\.render: .*course's stub") as error:
-        integrator.render(workers=1, progress=False)
-    assert "\n" not in str(error.value)
-    assert list(tmp_path.iterdir()) == []  # nothing rendered, nothing saved
-
-
 def test_cmc_render_saves_under_its_samples_name(tmp_path):
     integrator = CMCIntegrator(3, str(tmp_path / "img"), "_furnace")
     assert integrator.n_samples == 3

@@ -55,11 +55,15 @@ PHONG_CALLS = {  # what PhongIntegrator.compute_color calls of the modules benea
 }
 # CMCIntegrator.compute_color and what it calls, as for Phong
 CMC_FUNCTIONS = {
-    "CMCIntegrator.compute_color": "98685eeb9351c0ad",
+    "CMCIntegrator.compute_color": "dfa850a62a68c949",
+    "Integrator.incoming_light": "0fdae8403b738c7e",
     "sample_set_hemisphere": "96811dd0dbd0d5fd",
     "center_around_normal": "35252ba91566888f",
     "UniformPDF.get_val": "c96ffa7b144b10b6",
     "UniformPDF.generate_dir": "5c490cc04585c51c",
+    "CosinePDF.get_val": "016d6a63042db3b3",
+    "CosinePDF.generate_dir": "3674677286641a5c",
+    "Dot": "5968b1bc66a4e991",
     "Normalize": "41257e0e7f7f37cd",
     "Cross": "231231219460270a",
 }

@@ -4,7 +4,8 @@ from math import acos, atan2, cos, floor, pi, sin, sqrt
 
 import numpy as np
 
-from PyRT_Common import BLACK, EPSILON, HUGEVALUE, RGBColor, sample_set_hemisphere, unit_components
+from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, CosinePDF, RGBColor, UniformPDF,
+                         sample_set_hemisphere, unit_components)
 from PyRT_Core import UNIT_HIGH, UNIT_LOW, Lambertian
 from pyrt.acceleration.culling import scene_size
 from pyrt.scalar_intersections import POINT_AND_NORMAL
@@ -13,6 +14,8 @@ from pyrt.scalar_intersections import POINT_AND_NORMAL
 JITTERED_UP = (0.00319, 1.0, 0.0078)
 # UniformPDF.get_val, the density of every sample direction
 UNIFORM_DENSITY = 1 / (2 * pi)
+# The pdfs whose generate_dir and get_val the fused version repeats
+FUSED_PDFS = (UniformPDF, CosinePDF)
 # A sample ray leaves its object's surface into the hemisphere around the normal. Its own
 # object could meet it again only at a distance of about the rounding error of the hit
 # point over its cosine, e * scene size / cos with e ~ 1e-15, and the ray starts at
@@ -35,7 +38,8 @@ class AcceleratedCMC:
     order (a float32 sum or product of two float32 numbers, computed in double precision
     and rounded to float32, is the float32 operation's result). The other terms are
     doubles. A scene with both a map and an object that emits light mixes the two kinds
-    of term in an order-dependent way: there the plain code runs (can_stand_in)."""
+    of term in an order-dependent way: there the plain code runs (can_stand_in), as it
+    does for a pdf other than UniformPDF and CosinePDF."""
 
     def __init__(self, integrator, queries):
         self.integrator, self.queries = integrator, queries
@@ -48,6 +52,11 @@ class AcceleratedCMC:
             self.texels = env_map.env_map_hdr
             self.last_column, self.last_row = env_map.width - 1, env_map.height - 1
         self.samples = integrator.n_samples
+        self.cosine_exponents = None  # UniformPDF; for CosinePDF(exp), its exponents
+        pdf = integrator.pdf
+        if type(pdf) is CosinePDF:
+            e = pdf.exp  # generate_dir's and get_val's constants, as they compute them
+            self.cosine_exponents = (1 / (e + 1), 2 / (e + 1), (e + 1) / (2 * pi), e)
         # the scalar test of every object, in the order of object_list (can_fuse: every
         # object has one), for the sample rays, which start anywhere; and for those that
         # leave their object clearly (OWN_OBJECT_CLEARANCE), every other object's
@@ -61,9 +70,11 @@ class AcceleratedCMC:
 
     @staticmethod
     def can_stand_in(integrator) -> bool:
-        """Whether the scene's terms are all of one kind: no environment map, or no object
-        that emits light (see above)."""
+        """Whether the pdf is UniformPDF or CosinePDF and the scene's terms are all of one
+        kind: no environment map, or no object that emits light (see above)."""
         scene = integrator.scene
+        if type(getattr(integrator, "pdf", None)) not in FUSED_PDFS:
+            return False
         return scene.env_map is None or not any(
             obj.emission.r or obj.emission.g or obj.emission.b for obj in scene.object_list)
 
@@ -92,19 +103,25 @@ class AcceleratedCMC:
         ax, ay, az = JITTERED_UP
         vx, vy, vz = unit_components(ay * nz - az * ny, az * nx - ax * nz, ax * ny - ay * nx)
         ux, uy, uz = vy * nz - vz * ny, vz * nx - vx * nz, vx * ny - vy * nx
-        # sample_set_hemisphere(n, UniformPDF()): u1 then u2 for each sample, all first
+        # sample_set_hemisphere(n, pdf): u1 then u2 for each sample, all first
         draw = self.random
         draws = [draw() for _ in range(2 * self.samples)]
-        prob = UNIFORM_DENSITY
+        prob, cosine = UNIFORM_DENSITY, self.cosine_exponents
         tests, emissions, env_map = self.tests, self.emissions, self.env_map
         others, clearance = self.others[index], self.own_clearance
         red = green = blue = 0.0  # the sum of the terms that are doubles
-        map_rows, map_columns, map_factors = [], [], []  # the float32 terms' L and f
+        map_rows, map_columns, map_factors, map_probs = [], [], [], []  # float32 terms
         for k in range(0, len(draws), 2):
             u1, u2 = draws[k], draws[k + 1]
-            phi = 2 * pi * u1  # UniformPDF.generate_dir
-            sin_theta = sqrt(1 - u2 ** 2)
-            x, y, z = sin(phi) * sin_theta, u2, cos(phi) * sin_theta
+            phi = 2 * pi * u1  # pdf.generate_dir(u1, u2) and pdf.get_val of it
+            if cosine is None:  # UniformPDF
+                sin_theta = sqrt(1 - u2 ** 2)
+                y = u2
+            else:  # CosinePDF(e): its Dot((0, 1, 0), omega) is y exactly
+                y = u2 ** cosine[0]
+                sin_theta = sqrt(1 - u2 ** cosine[1])
+                prob = cosine[2] * y ** cosine[3]
+            x, z = sin(phi) * sin_theta, cos(phi) * sin_theta
             # center_around_normal: Normalize(v x + w y + u z)
             wx, wy, wz = (vx * x + nx * y + ux * z, vy * x + ny * y + uy * z,
                           vz * x + nz * y + uz * z)
@@ -135,15 +152,16 @@ class AcceleratedCMC:
                 map_rows.append(floor(v * self.last_row))
                 map_columns.append(floor(u * self.last_column))
                 map_factors.append((kr * cos_theta, kg * cos_theta, kb * cos_theta))
+                map_probs.append(prob)
         if map_rows:
-            return self.map_color(map_rows, map_columns, map_factors)
+            return self.map_color(map_rows, map_columns, map_factors, map_probs)
         return RGBColor(red / self.samples, green / self.samples, blue / self.samples)
 
-    def map_color(self, rows, columns, factors):
+    def map_color(self, rows, columns, factors, probs):
         """The colour of a pixel whose terms are the map's (see above): the float32 sum of
         texel * f / prob over the samples, in their order, over n_samples."""
         terms = self.texels[rows, columns] * np.array(factors).astype(np.float32)
-        terms /= np.float32(UNIFORM_DENSITY)
+        terms /= np.array(probs, dtype=np.float32)[:, None]
         total = np.cumsum(terms, axis=0)[-1] / np.float32(self.samples)
         return RGBColor(float(total[0]), float(total[1]), float(total[2]))
 
