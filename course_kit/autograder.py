@@ -1,11 +1,13 @@
-"""Gradescope's autograder of Practice 1: the zip that `python -m course_kit autograder ZIP`
-writes, and what its run_autograder does with each submission.
+"""Gradescope's autograder of a practice: the zip that `python -m course_kit autograder
+[--practice N] ZIP` writes (Practice 1 by default), and what its run_autograder does with
+each submission.
 
 The zip holds, at its root, setup.sh (Gradescope runs it once, when it builds the
 autograder's image: it installs the grader's requirements), run_autograder (Gradescope
 runs it for each submission) and the kit itself: the framework (the course modules and
 pyrt/) and course_kit/, which Gradescope unzips into ROOT/source/. run_autograder runs
-`python3 -m course_kit.autograder run` in ROOT/source/, which grades ROOT/submission/ as one
+`python3 -m course_kit.autograder run` (with `--practice N` for a practice after the
+first) in ROOT/source/, which grades ROOT/submission/ as one
 submission with the checks, limits and points of `grade` (course_kit/grader.py, the same
 code), and writes ROOT/results/results.json, also when the grader itself fails (score 0,
 the error in its output, the traceback in what it printed, which only the staff sees);
@@ -35,8 +37,8 @@ import course_kit.sandbox
 ROOT_VARIABLE, DEFAULT_ROOT = "AUTOGRADER_ROOT", "/autograder"
 SUBMISSION_NAME = "submission"
 # The files of the kit, by pattern from the repository's folder
-KIT_PATTERNS = ("PyRT_*.py", "AppRenderer.py", "pyrt/**/*.py", "course_kit/**/*.py",
-                "course_kit/**/*.toml", "course_kit/**/*.npz", "requirements.txt",
+KIT_PATTERNS = ("PyRT_*.py", "AppRenderer.py", "AppWorkbench.py", "pyrt/**/*.py",
+                "course_kit/**/*.py", "course_kit/**/*.toml", "course_kit/**/*.npz", "requirements.txt",
                 "requirements-dev.txt", ".vscode/*.json", "references/figure*.png")
 # Every file of the zip gets this date, so that the same kit makes the same bytes
 ZIP_DATE = (2020, 1, 1, 0, 0, 0)
@@ -89,16 +91,26 @@ def kit_files():
     return dict(sorted(files.items()))
 
 
-def write_zip(path, config=None):
-    """Writes Gradescope's autograder zip to path, with the settings of the file config
-    (default: course_kit/grading.toml), which must be valid."""
+def run_autograder_script(practice=1):
+    """run_autograder's text for Practice `practice`."""
+    if practice == 1:
+        return RUN_AUTOGRADER
+    return RUN_AUTOGRADER.replace("course_kit.autograder run ",
+                                  f"course_kit.autograder run --practice {practice} ")
+
+
+def write_zip(path, config=None, practice=1):
+    """Writes Gradescope's autograder zip of Practice `practice` to path, with the
+    settings of the file config (default: course_kit/grading.toml), which must be valid
+    for it."""
     import course_kit.grader
     files = kit_files()
+    course_kit.grader.load_config(course_kit.grader.CONFIG if config is None else config,
+                                  practice)
     if config is not None:
-        course_kit.grader.load_config(config)
         files["course_kit/grading.toml"] = Path(config).read_bytes()
     entries = {"setup.sh": (SETUP_SH.encode(), 0o755),
-               "run_autograder": (RUN_AUTOGRADER.encode(), 0o755)}
+               "run_autograder": (run_autograder_script(practice).encode(), 0o755)}
     entries.update((name, (content, 0o644)) for name, content in files.items())
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as archive:
         for name, (content, mode) in entries.items():
@@ -155,9 +167,9 @@ def check():
     return refusal
 
 
-def run(root, isolation=None):
-    """Grades root/submission/ into root/results/results.json (see the module's docstring);
-    returns what it wrote."""
+def run(root, isolation=None, practice=1):
+    """Grades root/submission/ for Practice `practice` into root/results/results.json (see
+    the module's docstring); returns what it wrote."""
     root = Path(root)
     start = time.monotonic()
     results = root / "results"
@@ -171,7 +183,7 @@ def run(root, isolation=None):
         # the image) leaves its results.json too
         import course_kit.feedback
         import course_kit.grader
-        config = course_kit.grader.load_config(course_kit.grader.CONFIG)
+        config = course_kit.grader.load_config(course_kit.grader.CONFIG, practice)
         refusal = refusal_of(course_kit.sandbox.choose(isolation))
         if refusal:
             raise course_kit.sandbox.IsolationUnavailable(refusal)
@@ -205,11 +217,13 @@ def main(argv=None):
     parser.add_argument("command", choices=["run", "check"], help="run: grade the "
                         "submission; check: say which isolation run would use (setup.sh)")
     course_kit.sandbox.add_argument(parser)
+    parser.add_argument("--practice", type=int, default=1, help="the practice graded")
     args = parser.parse_args(argv)
     if args.command == "check":
         check()
     else:
-        run(Path(os.environ.get(ROOT_VARIABLE, DEFAULT_ROOT)), args.isolation)
+        run(Path(os.environ.get(ROOT_VARIABLE, DEFAULT_ROOT)), args.isolation,
+            args.practice)
     return 0
 
 

@@ -54,9 +54,10 @@ def feedback_html(record):
     the error with the student's own traceback lines, and the images beside the expected
     ones with their difference."""
     e = html.escape
+    practice = f"Practice {record.get('practice', 1)}"
     parts = [f"<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-             f"<title>Practice 1: {e(record['submission'])}</title><style>{STYLE}</style>"
-             f"</head><body>\n<h1>Practice 1: {e(record['submission'])}, "
+             f"<title>{practice}: {e(record['submission'])}</title><style>{STYLE}</style>"
+             f"</head><body>\n<h1>{practice}: {e(record['submission'])}, "
              f"{_number(record['total'])} of {_number(record['max_total'])} points</h1>"]
     parts.append(f"<p>{e(graded_from(record))}</p>")
     parts += [f"<p class=\"failed\">{e(problem)}</p>" for problem in record["problems"]]

@@ -1,14 +1,16 @@
-"""The grader of Practice 1: `python -m course_kit grade SUBMISSIONS --out RESULTS`.
+"""The grader of a practice: `python -m course_kit grade [--practice N] SUBMISSIONS --out
+RESULTS` (Practice 1 by default; course_kit/practices.py lists the practices).
 
 Every entry of SUBMISSIONS (a folder or a .zip) is one submission: the course modules it
-holds (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py, wherever they
-lie in it; the shallowest of each name counts) are copied over a fresh copy of the
-handout without its checks. Each assignment step runs the student's code there, on
+holds (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py, and Practice 2's
+AppWorkbench.py, wherever they lie in it; the shallowest of each name counts) are copied
+over a fresh copy of the practice's handout without its checks. Each assignment step runs the student's code there, on
 inputs drawn for this grading, in a process of its own (course_kit/isolation.py) with
 limits of time, memory and output, isolated as course_kit/sandbox.py chooses (bubblewrap's
 sandbox, an unprivileged user, or the process alone); that process hands back data only,
-which this process judges (course_kit/judging.py) with the students' own rules
-(course_kit/checks/practice1_checks.py). The submissions themselves are only read.
+which this process judges (the practice's judge: course_kit/judging.py for Practice 1,
+course_kit/judging_practice2.py for Practice 2) with the students' own rules
+(course_kit/checks/practice<N>_checks.py). The submissions themselves are only read.
 
 RESULTS gets grades.csv, and for each submission a folder with feedback.html, results.json
 (Gradescope's format), grading.json (the grader's record) and the images of the checks
@@ -41,14 +43,10 @@ import course_kit.feedback
 import course_kit.handout
 import course_kit.isolation
 import course_kit.sandbox
+from course_kit.practices import PRACTICES, all_steps
 
 CONFIG = course_kit.handout.KIT / "grading.toml"
-STEP_TITLES = {
-    "1.1": "Assignment 1.1: the render loop (Lazy integrator)",
-    "1.2": "Assignment 1.2: any_hit and the Intersection integrator",
-    "1.3": "Assignment 1.3: the Depth and Normal integrators",
-    "1.4": "Assignment 1.4: the Phong integrator",
-}
+STEP_TITLES = PRACTICES[1].steps  # Practice 1's; each practice has its own
 LIMIT_NAMES = ("cpu_seconds", "wall_seconds", "memory_mib", "output_kib")
 # When students see what Gradescope shows: the tests (visibility) and what the grader
 # printed (stdout_visibility); the defaults are what results.json has always said
@@ -77,6 +75,10 @@ def debugger_attached():
     """Whether a debugger is attached: never asked for in a working copy."""
     return False
 '''
+# The course modules taken from a submission: those of every practice (a module the
+# practice graded does not use changes nothing)
+SUBMITTED_MODULES = tuple(dict.fromkeys(name for one in PRACTICES.values()
+                                        for name in one.modules))
 MAX_MODULE_BYTES = 1024 * 1024  # a course module larger than this is not taken
 OUTPUT_SHOWN = 4000  # characters of a step's output kept for the feedback
 REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
@@ -87,16 +89,24 @@ REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
 # ------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Config:
-    """The points of each step, the limits of a step's process and Gradescope's
-    visibilities (course_kit/grading.toml)."""
+    """The points of each step of the practice graded, the limits of a step's process and
+    Gradescope's visibilities (course_kit/grading.toml), and the practice's number."""
 
     points: dict
     limits: dict
     text: str  # the file's text, part of what makes a grading repeatable
     gradescope: dict = field(default_factory=lambda: dict(GRADESCOPE_DEFAULTS))
+    practice: int = 1
+
+    @property
+    def kind(self):
+        """The course_kit.practices.Practice graded."""
+        return PRACTICES[self.practice]
 
 
-def load_config(path=CONFIG):
+def load_config(path=CONFIG, practice=1):
+    """The Config of path for Practice `practice`: its [points] give every step of that
+    practice, and may give those of the others."""
     path = Path(path)
     text = path.read_text(encoding="utf-8")
     try:
@@ -104,9 +114,12 @@ def load_config(path=CONFIG):
     except tomllib.TOMLDecodeError as error:
         raise ValueError(f"{path}: {error}") from None
     points, limits = settings.get("points", {}), settings.get("limits", {})
-    steps = list(STEP_TITLES)
-    if sorted(points) != steps or sorted(limits) != sorted(LIMIT_NAMES):
-        raise ValueError(f"{path}: [points] must give the steps {', '.join(steps)} and "
+    steps = list(PRACTICES[practice].steps)
+    if not set(steps) <= set(points) <= set(all_steps()) or sorted(limits) != sorted(
+            LIMIT_NAMES):
+        raise ValueError(f"{path}: [points] must give the steps {', '.join(steps)} (and "
+                         f"may give those of the other practices: "
+                         f"{', '.join(sorted(set(all_steps()) - set(steps)))}) and "
                          f"[limits] {', '.join(LIMIT_NAMES)}")
     for table, values in (("points", points), ("limits", limits)):
         for key, value in values.items():
@@ -122,7 +135,8 @@ def load_config(path=CONFIG):
         if value not in VISIBILITIES:
             raise ValueError(f"{path}: [gradescope] {key} must be one of "
                              f"{', '.join(VISIBILITIES)}, got {value!r}")
-    return Config({step: points[step] for step in steps}, dict(limits), text, gradescope)
+    return Config({step: points[step] for step in steps}, dict(limits), text, gradescope,
+                  practice)
 
 
 # ------------------------------------------------------------------------------------------
@@ -184,7 +198,7 @@ def _shallowest(paths):
     """{module name: the shallowest of paths (PurePosixPath) with that name}."""
     chosen = {}
     for path in sorted(paths, key=lambda p: (len(p.parts), str(p))):
-        if path.name in course_kit.handout.COURSE_MODULES:
+        if path.name in SUBMITTED_MODULES:
             chosen.setdefault(path.name, path)
     return chosen
 
@@ -256,13 +270,14 @@ def make_working_copy(submission, template, workdir):
 def grade_steps(submission, template, scratch, config, server, trial):
     """The verdicts of every step for submission, its working copy made in scratch, its
     steps run by server (a course_kit.isolation.StepServer) on the inputs of trial (a
-    course_kit.judging.Trial) and judged here."""
+    Trial of the practice's judge) and judged here."""
     workdir = scratch / "work"
     make_working_copy(submission, template, workdir)
     course_kit.sandbox.hand_over(scratch, workdir, server.confinement.user)
     verdicts = []
-    for step, title in STEP_TITLES.items():
-        checks, refused, limits_not_set, why, output = course_kit.judging.judge_step(
+    judge = importlib.import_module(config.kind.judge)
+    for step, title in config.kind.steps.items():
+        checks, refused, limits_not_set, why, output = judge.judge_step(
             step, trial, server, workdir, scratch, config.limits)
         failed = [check for check in checks if not check["passed"]]
         if why:
@@ -290,10 +305,11 @@ def kit_fingerprint(config):
     """What else decides a grade besides the submission: the handout with its checks and
     expected images, the step's process, the judge and the settings."""
     sha = hashlib.sha256()
-    for name, content in course_kit.handout.handout_files().items():
+    for name, content in course_kit.handout.handout_files(config.practice).items():
         sha.update(name.encode() + b"\0" + content + b"\0")
     machinery = [course_kit.handout.REPO / path for path in framework_machinery()]
-    kit = ("isolation.py", "sandbox.py", "handback.py", "judging.py")
+    kit = ("isolation.py", "sandbox.py", "handback.py", "practices.py",
+           config.kind.judge.rsplit(".", 1)[1] + ".py")
     for path in machinery + [course_kit.handout.KIT / name for name in kit]:
         sha.update(path.read_bytes())
     sha.update(config.text.encode())
@@ -302,7 +318,7 @@ def kit_fingerprint(config):
 
 def grade_submission(submission, template, results, config, kit, servers, isolation,
                      trial):
-    """Grades one submission on the inputs of trial (a course_kit.judging.Trial) and
+    """Grades one submission on the inputs of trial (the Trial of the practice's judge) and
     writes its folder of results; returns its record. Its steps run on a step server
     taken from the queue servers, and given back, isolated as isolation (a
     course_kit.sandbox.Isolation) says."""
@@ -320,10 +336,11 @@ def grade_submission(submission, template, results, config, kit, servers, isolat
                 "submission": submission.name,
                 "fingerprint": fingerprint,
                 "files": {name: "submission" if name in submission.files else "handout"
-                          for name in course_kit.handout.COURSE_MODULES},
+                          for name in config.kind.modules},
+                "practice": config.practice,
                 "problems": submission.problems,
                 "isolation": isolation.mode,
-                "draw": {"size": trial.draw.size, "offset": list(trial.draw.offset)},
+                "draw": importlib.import_module(config.kind.judge).draw_record(trial.draw),
                 "steps": steps,
                 "total": sum(step["points"] for step in steps),
                 "max_total": sum(config.points.values()),
@@ -377,8 +394,9 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
         # and the submissions must be out of a step's reach
         repo = course_kit.handout.REPO
         course_kit.sandbox.check_unreadable(
-            [repo / name for name in course_kit.handout.COURSE_MODULES]
-            + [course_kit.handout.EXPECTED, results]
+            [repo / name for name in config.kind.modules]
+            + [course_kit.handout.CHECKS / "expected" / name for name in config.kind.expected]
+            + [results]
             + sorted({submission.path.parent for submission in submissions}))
     kit = kit_fingerprint(config) + isolation.mode
     records = {}
@@ -392,7 +410,8 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
     servers = queue.Queue()
     # every folder of the grading lies in this one, which goes when the grading ends
     with tempfile.TemporaryDirectory(prefix="pyrt-grade-") as grading:
-        template = course_kit.handout.write_handout(Path(grading) / "handout")
+        template = course_kit.handout.write_handout(Path(grading) / "handout",
+                                                    config.practice)
         try:
             cores = course_kit.isolation.cores()
             for index in range(jobs if todo else 0):
@@ -400,7 +419,7 @@ def grade_submissions(submissions, results, config, jobs=None, force=False, prog
                     cores[index % len(cores)], course_kit.sandbox.confinement(isolation)))
             # imported and made while the servers start: the judge (numpy, the framework),
             # the inputs, and what the framework makes of them
-            judging = importlib.import_module("course_kit.judging")
+            judging = importlib.import_module(config.kind.judge)
             trial = judging.drawn_trial(draws or random.SystemRandom(),
                                         Path(grading) / "expected") if todo else None
             # The pool ends before the servers close: a submission still being graded
@@ -440,7 +459,7 @@ def main(args):
     if unsupported:
         sys.exit(f"course_kit grade: {unsupported}")
     try:
-        config = load_config(args.config or CONFIG)
+        config = load_config(args.config or CONFIG, getattr(args, "practice", 1))
         if args.jobs is not None and args.jobs < 1:
             raise ValueError(f"--jobs must be 1 or more, got {args.jobs}")
         isolation = course_kit.sandbox.choose(args.isolation)

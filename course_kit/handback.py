@@ -55,10 +55,11 @@ def expected_arrays(name, draw):
     return {"image": (np.dtype(np.float64), shape), "traced": (np.dtype(np.float64), shape)}
 
 
-def read(path, names, draw, make_rendered):
+def read(path, names, draw, make_rendered, expected=expected_arrays):
     """(the checks' Rendered, made by make_rendered(name, arrays, texts), in the order of
     names; the rest of meta.json) from the file at path, written for the checks `names`
-    at draw. Raises Malformed when the file is not what a step's process writes."""
+    at draw, whose arrays expected(name, draw) gives (Practice 1's by default). Raises
+    Malformed when the file is not what a step's process writes."""
     try:
         if path.stat().st_size > MAX_FILE_BYTES:
             raise Malformed(f"handed back more than {MAX_FILE_BYTES} bytes")
@@ -70,7 +71,8 @@ def read(path, names, draw, make_rendered):
                 if member == META:
                     continue
                 name, _, key = member.partition("/")
-                arrays[name][key[:-len(".npy")]] = _array(archive, info, name, key, draw)
+                arrays[name][key[:-len(".npy")]] = _array(archive, info, name, key, draw,
+                                                          expected)
     except (zipfile.BadZipFile, OSError, EOFError, KeyError) as error:
         raise Malformed(f"handed back a file that is not the grader's format ({error})")
     rendered = [make_rendered(name, arrays[name], meta["checks"][name]) for name in names]
@@ -117,11 +119,11 @@ def _text(value, what, optional=False):
     raise Malformed(f"handed back a {what} that is no text of at most {MAX_TEXT} characters")
 
 
-def _array(archive, info, name, key, draw):
+def _array(archive, info, name, key, draw, expected):
     """The array of the member info, checked against what the check `name` hands back."""
     if not key.endswith(".npy"):
         raise Malformed(f"handed back a file it should not: {info.filename!r}")
-    allowed = expected_arrays(name, draw).get(key[:-len(".npy")])
+    allowed = expected(name, draw).get(key[:-len(".npy")])
     if allowed is None:
         raise Malformed(f"handed back an array it should not: {info.filename!r}")
     dtype, shape = allowed

@@ -20,8 +20,9 @@ Before the student's code is imported, the step's process
 - installs an audit hook that refuses, and notes, every write outside the working copy or
   into a tests/ folder in it, and every start of another process.
 Then it runs its task with the student's code: "collect" renders and answers for the
-checks named (checks/practice1_render.py, loaded by the server before any step), "story"
-tells a pixel's history. It hands back data only, no verdict, into the result file
+checks named (with the practice's render module the task names: checks/practice1_render.py
+or checks/practice2_render.py, loaded by the server before any step), "story" tells a
+pixel's history. It hands back data only, no verdict, into the result file
 outside the working copy (course_kit/handback.py): the grader reads it with limits and
 judges it in its own process (course_kit/judging.py), so nothing the student's code does
 in its process changes how it is judged. A process that ends before that (os._exit, a
@@ -54,10 +55,14 @@ except ImportError:  # Windows: no process limits, and no fork either (see unsup
 
 # What every course module imports, loaded once by the step server
 PRELOADED = ("numpy", "cv2", "matplotlib.pyplot")
-# What a step runs besides the student's code, loaded by the step server from the kit:
-# what the student's code makes, as data (practice1_render), and how it goes back
+# What a step runs besides the student's code, loaded by the step server from the kit, in
+# this order (each may import those before it): what the student's code makes, as data
+# (each practice's render module), and how it goes back
 KIT = Path(__file__).resolve().parent
-STEP_MODULES = (KIT / "checks" / "practice1_render.py", KIT / "handback.py")
+STEP_MODULES = tuple(KIT / "checks" / name for name in (
+    "practice1_render.py", "practice2_scenes.py", "practice2_render.py")) + (
+    KIT / "handback.py",)
+DEFAULT_RENDER = "practice1_render"  # the render module of a task that names none
 # The step server's environment: a few of the grader's variables, no window, and one
 # thread for the numerical libraries, as each submission has processes of its own
 KEPT_VARIABLES = ("PATH", "HOME", "LANG", "LC_ALL", "TMPDIR")
@@ -187,7 +192,8 @@ def step_process(workdir, task, result_path, log_path, limits, user=None, proces
     sys.path[:] = [workdir] + _python_paths()
     refused = []
     sys.addaudithook(guard(workdir, refused))
-    render, handback = sys.modules["practice1_render"], sys.modules["handback"]
+    render = sys.modules[task.get("render", DEFAULT_RENDER)]
+    handback = sys.modules["handback"]
     draw = render.draw_from_json(task["draw"])
     out = os.path.join(workdir, "out", "checks")
     if task["kind"] == "story":

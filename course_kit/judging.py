@@ -80,6 +80,11 @@ def drawn_trial(random, folder):
     return Trial(draw, cases, course_kit.references.GradingData(draw, folder), story)
 
 
+def draw_record(draw):
+    """What the grader's record keeps of a draw: the size and the offset."""
+    return {"size": draw.size, "offset": list(draw.offset)}
+
+
 def _unit(v):
     length = sum(a * a for a in v) ** 0.5 or 1.0
     return tuple(a / length for a in v)

@@ -21,6 +21,7 @@ A failing check says what differs and, when it recognises it, the likely mistake
 writes your image (or curve), the expected one and their difference into out/checks/.
 """
 import math
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -38,6 +39,7 @@ EXACT_ABSOLUTE = 1e-12
 MAP_RELATIVE = 1e-5
 MAP_ABSOLUTE = 1e-9
 NAMED_WITHIN = 0.1  # a ratio within this fraction of a mistake's ratio names the mistake
+PLOTTING = threading.Lock()
 
 TITLES = {
     "estimate": "compute_estimate_cmc on given sample sets",
@@ -56,9 +58,7 @@ def new_check(name):
 
 def run_check(name, out=OUT, draw=scenes.PUBLISHED):
     """The Check called `name`, run on the student's modules with draw (the published one
-    by default, seeded as it says); its PNGs go into out/<name>/."""
-    import random
-    random.seed(draw.seed)  # the kit's and the students' own runs repeat themselves
+    by default, its draws seeded as it says); its PNGs go into out/<name>/."""
     rendered = render.collect(name, draw, Path(out) / name)
     return judge_rendered(rendered, draw, Path(out) / name)
 
@@ -149,9 +149,15 @@ def _judge_curve(check, rendered, draw, folder):
 
 def write_curve_pngs(folder, got, expected):
     """The student's curve and the expected one, on the same log-log axes, as PNGs."""
+    with PLOTTING:  # pyplot's figures are not for two threads at once (the grader's)
+        return _curve_pngs(folder, got, expected)
+
+
+def _curve_pngs(folder, got, expected):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import NullFormatter, StrMethodFormatter
     folder.mkdir(parents=True, exist_ok=True)
     finite = [v for v in np.concatenate([got, expected]) if np.isfinite(v) and v > 0]
     low, high = (min(finite) / 1.5, max(finite) * 1.5) if finite else (1e-3, 10.0)
@@ -163,9 +169,13 @@ def write_curve_pngs(folder, got, expected):
         axes.set_xscale("log")
         axes.set_yscale("log")
         axes.set_ylim(low, high)
+        for axis in (axes.xaxis, axes.yaxis):  # plain numbers, no TeX
+            axis.set_major_formatter(StrMethodFormatter("{x:g}"))
+            axis.set_minor_formatter(NullFormatter())
+        axes.set_xticks(scenes.CURVE_NS)
         axes.set_xlabel("N")
         axes.set_title("average error", fontsize=9)
-        figure.tight_layout()
+        figure.subplots_adjust(left=0.22, bottom=0.16)
         paths[kind] = folder / f"{kind}.png"
         figure.savefig(paths[kind])
         plt.close(figure)

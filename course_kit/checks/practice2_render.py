@@ -79,6 +79,7 @@ def collect(name, draw, out, traced=False):
         elif name == "curve":
             _curve(rendered, draw)
         else:
+            random.seed(draw.seed)  # the check holds for any seed: this one repeats itself
             _render(rendered, draw, Path(out))
     except KeyboardInterrupt:
         raise
