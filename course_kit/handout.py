@@ -78,13 +78,18 @@ def render(self):
 '''
 # A body stub: the course's comment, then what the method does until the student writes it
 BODY_STUBS = {"any_hit": "return False", "compute_color": "pass",
-              "compute_estimate_cmc": "return 0"}
+              "compute_estimate_cmc": "return 0",
+              # GaussianProcess.py (3.1): Q stays zeros (np.linalg.inv then refuses it), z
+              # stays zeros after the course's set-up, and the integral is BLACK
+              "compute_inv_Q": "pass", "compute_z": "pass",
+              "compute_integral_BMC": "return BLACK"}
 # Where each step's blocks may stand: "class" for whole methods, else the methods whose
 # body they are
 # (Practices 2 to 4: their integrators are stubs in Practice 1)
 STEP_PLACES = {"1.1-1.2": {"class"}, "1.2": {"any_hit", "compute_color"},
                "1.3": {"compute_color"}, "1.4": {"compute_color"},
                "2.1": {"compute_estimate_cmc"},  # Practice 2's workbench
+               "3.1": {"compute_inv_Q", "compute_z", "compute_integral_BMC"},
                "2.3": {"compute_color", "incoming_light"},
                "3.3": {"compute_color", "sample_value"}, "3.3.2": {"pick_sample_set"},
                "4.1": {"__init__"}, "4.2": {"sample_value"}}

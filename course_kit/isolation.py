@@ -60,7 +60,8 @@ PRELOADED = ("numpy", "cv2", "matplotlib.pyplot")
 # (each practice's render module), and how it goes back
 KIT = Path(__file__).resolve().parent
 STEP_MODULES = tuple(KIT / "checks" / name for name in (
-    "practice1_render.py", "practice2_scenes.py", "practice2_render.py")) + (
+    "practice1_render.py", "practice2_scenes.py", "practice2_render.py",
+    "practice3_scenes.py", "practice3_render.py")) + (
     KIT / "handback.py",)
 DEFAULT_RENDER = "practice1_render"  # the render module of a task that names none
 # The step server's environment: a few of the grader's variables, no window, and one

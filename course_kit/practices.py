@@ -17,6 +17,7 @@ from typing import Dict, Tuple
 FRAMEWORK_MODULES = ("PyRT_Common.py", "PyRT_Core.py", "PyRT_Integrators.py",
                      "AppRenderer.py")
 WORKBENCH = "AppWorkbench.py"
+GAUSSIAN_PROCESS = "GaussianProcess.py"  # Practice 3's module, beside the workbench
 
 
 @dataclass(frozen=True)
@@ -52,6 +53,12 @@ def practice_of(step):
     return int(step.split(".", 1)[0])
 
 
+# Practices 3 and 4 share their checks' modules (practice3_*.py), which use Practice 2's
+BAYESIAN_CHECK_FILES = ("monte_carlo_check.py", "practice1_checks.py", "practice1_render.py",
+                        "practice2_scenes.py", "practice2_checks.py", "practice2_render.py",
+                        "practice3_scenes.py", "practice3_checks.py", "practice3_render.py")
+BAYESIAN_RENDER_NEEDS = ("practice2_scenes", "practice2_render", "practice3_scenes")
+
 PRACTICES = {
     1: Practice(
         number=1, title="Practice 1: ray tracing",
@@ -83,6 +90,36 @@ PRACTICES = {
         packages=("numpy", "opencv-python-headless", "matplotlib", "tqdm", "pytest"),
         render="practice2_render", render_needs=("practice2_scenes",),
         judge="course_kit.judging_practice2"),
+    3: Practice(
+        number=3, title="Practice 3: Bayesian Monte Carlo",
+        modules=FRAMEWORK_MODULES + (WORKBENCH, GAUSSIAN_PROCESS),
+        steps={
+            "3.1": "Assignment 3.1: the Gaussian process (compute_inv_Q, compute_z, "
+                   "compute_integral_BMC)",
+            "3.2": "Assignment 3.2: Bayesian Monte Carlo in the workbench",
+            "3.3": "Assignment 3.3: the Bayesian Monte Carlo integrator",
+            "3.3.2": "Assignment 3.3.2: a random rotation and a pool of GPs per hit",
+        },
+        optional_steps=(),
+        # Practices 1 and 2's checks lend their verdicts, images and scenes
+        check_files=BAYESIAN_CHECK_FILES + ("test_practice3.py",),
+        expected=(),
+        packages=("numpy", "opencv-python-headless", "matplotlib", "tqdm", "pytest"),
+        render="practice3_render", render_needs=BAYESIAN_RENDER_NEEDS,
+        judge="course_kit.judging_practice3"),
+    4: Practice(
+        number=4, title="Practice 4: adding prior knowledge (importance sampling)",
+        modules=FRAMEWORK_MODULES + (WORKBENCH, GAUSSIAN_PROCESS),
+        steps={
+            "4.1": "Assignment 4.1: classic Monte Carlo with importance sampling",
+            "4.2": "Assignment 4.2: Bayesian Monte Carlo with importance sampling",
+        },
+        optional_steps=(),
+        check_files=BAYESIAN_CHECK_FILES + ("test_practice4.py",),
+        expected=(),
+        packages=("numpy", "opencv-python-headless", "matplotlib", "tqdm", "pytest"),
+        render="practice3_render", render_needs=BAYESIAN_RENDER_NEEDS,
+        judge="course_kit.judging_practice3"),
 }
 
 
