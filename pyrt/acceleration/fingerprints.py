@@ -1,7 +1,7 @@
 """Which functions the fast paths repeat, and whether they are still what they were when
 the fast paths were proven equal to them: fingerprints of their source, and the
-integrators (Phong, classic Monte Carlo) that a fused version may stand in for, which
-their own module registers."""
+integrators (Phong, classic and Bayesian Monte Carlo) that a fused version may stand in
+for, which their own module registers."""
 import hashlib
 import inspect
 import sys
@@ -82,9 +82,25 @@ CMC_CALLS = {
     "PyRT_Common.RGBColor.__truediv__": "85e151eb11f94b85",
     "PyRT_Common.RGBColor.multiply": "db6e9f232b4675f8",
 }
+# BayesianMonteCarloIntegrator.compute_color and what it calls, as for Phong; the GP's
+# add_sample_val and compute_integral_BMC are called by the fused version too, not repeated
+BMC_FUNCTIONS = {
+    "BayesianMonteCarloIntegrator.compute_color": "2533396463c3491a",
+    "BayesianMonteCarloIntegrator.pick_sample_set": "d9bee35e840dfc0e",
+    "BayesianMonteCarloIntegrator.sample_value": "a11f784f8639baf6",
+    "Integrator.incoming_light": "0fdae8403b738c7e",
+    "center_around_normal": "35252ba91566888f",
+    "rotate_around_y": "7dc88a64ef41cc6c",
+    "Normalize": "41257e0e7f7f37cd",
+    "Cross": "231231219460270a",
+}
+BMC_CALLS = dict(CMC_CALLS)  # the same methods of the vectors, colours, BRDF and map
+# BMCISIntegrator's: BayesianMonteCarloIntegrator's, with values of its own
+BMCIS_FUNCTIONS = dict(BMC_FUNCTIONS, **{"BMCISIntegrator.sample_value": "dc976d52942d97cb"})
 # The integrators whose compute_color a fused version repeats, by name: the functions of
 # their own module (looked up there) and of the modules beneath it
-FUSED = {"phong": (PHONG_FUNCTIONS, PHONG_CALLS), "cmc": (CMC_FUNCTIONS, CMC_CALLS)}
+FUSED = {"phong": (PHONG_FUNCTIONS, PHONG_CALLS), "cmc": (CMC_FUNCTIONS, CMC_CALLS),
+         "bmc": (BMC_FUNCTIONS, BMC_CALLS), "bmcis": (BMCIS_FUNCTIONS, BMC_CALLS)}
 
 
 def unchanged(functions, namespace=None) -> bool:
