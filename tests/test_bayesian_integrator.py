@@ -33,6 +33,10 @@ from PyRT_Integrators import BayesianMonteCarloIntegrator, BMCISIntegrator, CMCI
 
 # The float32 map and the cosines' rounding: far below any error of an estimate
 ROUNDING = 1e-5
+SAMPLES = 40  # the course's number of samples per hit
+# How far a GP of 40 samples may estimate the integral of cos, or cos^2, off the closed
+# form: measured, 1 to 4%; its predicted error (the posterior's standard deviation) is 20%
+GP_TOLERANCE = 0.1
 
 
 def make_pool(size, samples, pdf=UniformPDF(), p_func=Constant(1), seed=0):
@@ -68,29 +72,30 @@ def assert_each_pixel_is_one_of(values, estimates):
 # Closed forms: the furnace, the emitting box, the cosine counted twice
 # ------------------------------------------------------------------------------------------
 def test_white_furnace_gives_each_gps_estimate_of_pi_times_albedo_and_radiance(tmp_path):
-    pool = make_pool(3, 16)
+    pool = make_pool(3, SAMPLES)
     scene = furnace_scene(16)
-    image = render(tmp_path, BayesianMonteCarloIntegrator(16, pool, str(tmp_path / "f")), scene)
+    image = render(tmp_path, BayesianMonteCarloIntegrator(SAMPLES, pool, str(tmp_path / "f")),
+                   scene)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_l = np.array(ALBEDO) * RADIANCE
     estimates = np.array([c_l / math.pi * (gp.weights @ cosines(gp)) for gp in pool])
     taken = assert_each_pixel_is_one_of(image[hit], estimates)
     assert np.all(taken > hit.sum() / 6)  # every GP of the pool serves about a third
     # Each GP's estimate of the integral of cos (pi), beside its predicted error: a belief
-    # of the GP, not a bound; 16 samples put every estimate within 3% of pi
+    # of the GP, not a bound
     for gp in pool:
         relative = gp.weights @ cosines(gp) / math.pi - 1
         predicted = math.sqrt(max(gp.compute_variance_BMC(), 0.0)) / math.pi
         print(f"furnace: relative error {relative:+.4f}, predicted {predicted:.4f}")
-        assert abs(relative) < 0.03
+        assert abs(relative) < GP_TOLERANCE
     assert np.all(image[~hit] == RADIANCE)
 
 
 def test_emitting_box_gives_the_gps_estimate_of_pi_times_albedo_and_emission(tmp_path):
-    pool = make_pool(1, 12, seed=4)
+    pool = make_pool(1, SAMPLES, seed=4)
     scene = emissive_box_scene(12)
-    image = render(tmp_path, BayesianMonteCarloIntegrator(12, pool[0], str(tmp_path / "e")),
-                   scene)
+    image = render(tmp_path, BayesianMonteCarloIntegrator(SAMPLES, pool[0],
+                                                          str(tmp_path / "e")), scene)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_e = np.array(ALBEDO) * np.array(EMISSION)
     expected = c_e / math.pi * (pool[0].weights @ cosines(pool[0]))
@@ -100,15 +105,15 @@ def test_emitting_box_gives_the_gps_estimate_of_pi_times_albedo_and_emission(tmp
 
 
 def test_importance_sampled_furnace_gives_the_gps_estimate_of_the_cosines_integral(tmp_path):
-    pool = make_pool(2, 16, CosinePDF(1), CosineLobe(1), seed=2)
+    pool = make_pool(2, SAMPLES, CosinePDF(1), CosineLobe(1), seed=2)
     scene = furnace_scene(12)
-    image = render(tmp_path, BMCISIntegrator(16, pool, str(tmp_path / "is")), scene)
+    image = render(tmp_path, BMCISIntegrator(SAMPLES, pool, str(tmp_path / "is")), scene)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_l = np.array(ALBEDO) * RADIANCE
     estimates = np.array([c_l / math.pi * gp.weights.sum() for gp in pool])
     assert np.all(assert_each_pixel_is_one_of(image[hit], estimates) > 0)
     for gp in pool:  # sum(w) estimates the integral of cos, pi
-        assert abs(gp.weights.sum() / math.pi - 1) < 0.03
+        assert abs(gp.weights.sum() / math.pi - 1) < GP_TOLERANCE
 
 
 class CosineTwiceBMC(BayesianMonteCarloIntegrator):
@@ -120,15 +125,17 @@ class CosineTwiceBMC(BayesianMonteCarloIntegrator):
 
 
 def test_white_furnace_catches_the_cosine_counted_twice(tmp_path):
-    pool = make_pool(1, 16)
+    pool = make_pool(1, SAMPLES)
     scene = furnace_scene(12)
-    image = render(tmp_path, CosineTwiceBMC(16, pool, str(tmp_path / "twice")), scene)
+    image = render(tmp_path, CosineTwiceBMC(SAMPLES, pool, str(tmp_path / "twice")), scene)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_l = np.array(ALBEDO) * RADIANCE
     np.testing.assert_allclose(image[hit] / c_l, pool[0].weights @ cosines(pool[0], 2)
                                / math.pi, rtol=ROUNDING)
-    # the integral of cos^2 is 2 pi / 3: two thirds of the furnace's c L
-    assert np.all(np.abs(image[hit] / c_l - 2 / 3) < 0.03)
+    # the integral of cos^2 is 2 pi / 3: two thirds of the furnace's c L, which the
+    # furnace's tolerance rejects
+    assert np.all(np.abs(image[hit] / c_l / (2 / 3) - 1) < GP_TOLERANCE)
+    assert np.all(np.abs(image[hit] / c_l - 1) > 3 * GP_TOLERANCE)
 
 
 # ------------------------------------------------------------------------------------------
@@ -141,8 +148,7 @@ def test_bmc_error_is_below_classic_monte_carlos_against_the_reference(tmp_path)
                     "are not here")
     reference = np.load(folder / "p2_sky_128_1024_ref.npz")["image"]
     sky = str(folder / "env_maps" / "pyrt_sky.hdr")
-    samples, size = 16, 64
-    reference = reference.reshape(size, 2, size, 2, 3)[:, 0, :, 0]  # pixel centres of 64 px
+    samples, size = SAMPLES, 128
     errors = {}
     for name, integrator in [
             ("cmc", CMCIntegrator(samples, str(tmp_path / "c"))),
@@ -154,10 +160,10 @@ def test_bmc_error_is_below_classic_monte_carlos_against_the_reference(tmp_path)
         image = render(tmp_path, integrator, sphere_scene(envMap=sky, width=size,
                                                            height=size), 3)
         errors[name] = math.sqrt(np.mean((image - reference) ** 2))
-    print("RMSE against the 1024-sample reference at 16 samples:", errors)
-    # margins far above the seeds' spread: BMC's error is about half of CMC's
-    assert errors["bmc"] < 0.8 * errors["cmc"]
-    assert errors["bmc_is"] < 0.8 * errors["cmc_is"]
+    print(f"RMSE against the 1024-sample reference at {samples} samples:", errors)
+    # measured over seeds, BMC's error is 0.79 times CMC's, with a spread of 0.01
+    assert errors["bmc"] < 0.9 * errors["cmc"]
+    assert errors["bmc_is"] < 0.9 * errors["cmc_is"]
     assert errors["cmc_is"] < errors["cmc"]
 
 

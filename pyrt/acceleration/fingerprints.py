@@ -97,10 +97,25 @@ BMC_FUNCTIONS = {
 BMC_CALLS = dict(CMC_CALLS)  # the same methods of the vectors, colours, BRDF and map
 # BMCISIntegrator's: BayesianMonteCarloIntegrator's, with values of its own
 BMCIS_FUNCTIONS = dict(BMC_FUNCTIONS, **{"BMCISIntegrator.sample_value": "dc976d52942d97cb"})
+# PyRT's GP (GaussianProcess.py), whose compute_integral_BMC the fused Bayesian Monte Carlo
+# repeats, and whose add_sample_val it leaves out for finite values, which it accepts
+GP_FUNCTIONS = {
+    "GP.compute_integral_BMC": "0e84c33a3f1fc0f4",
+    "GP.add_sample_val": "ebf8fb32be7e7bec",
+}
 # The integrators whose compute_color a fused version repeats, by name: the functions of
 # their own module (looked up there) and of the modules beneath it
 FUSED = {"phong": (PHONG_FUNCTIONS, PHONG_CALLS), "cmc": (CMC_FUNCTIONS, CMC_CALLS),
          "bmc": (BMC_FUNCTIONS, BMC_CALLS), "bmcis": (BMCIS_FUNCTIONS, BMC_CALLS)}
+
+
+def own_gp(gp) -> bool:
+    """Whether gp is a GP of PyRT's GaussianProcess.py whose add_sample_val and
+    compute_integral_BMC are those the fused Bayesian Monte Carlo was proven equal to."""
+    cls = type(gp)
+    return (cls.__name__ == "GP" and cls.__module__ == "GaussianProcess"
+            and not {"add_sample_val", "compute_integral_BMC"} & set(vars(gp))
+            and unchanged(GP_FUNCTIONS, {"GP": cls}))
 
 
 def unchanged(functions, namespace=None) -> bool:
@@ -170,5 +185,7 @@ def mirrored_functions():
     tables = [(QUERY_FUNCTIONS, None), (dict(INTERSECT_FUNCTIONS.values()), None)]
     for name, (functions, calls) in FUSED.items():
         tables += [(calls, None), (functions, fused_namespace(name))]
+    if "GaussianProcess" in sys.modules:
+        tables.append((GP_FUNCTIONS, vars(sys.modules["GaussianProcess"])))
     return [(name, digest, fingerprint(current(name, namespace)))
             for functions, namespace in tables for name, digest in functions.items()]
