@@ -25,6 +25,7 @@ from helpers import (ALBEDO, EMISSION, FURNACE_CENTRE, FURNACE_RADIUS, RADIANCE,
                      global_generator_kept, render_image, sky_sphere_scene, sphere_pixels,
                      with_map_and_emitter)
 from AppRenderer import cornell_box_scene, sphere_scene
+from benchmarks.flat_loop import flat_bmc
 from pyrt.acceleration.bayesian import AcceleratedBMC, AcceleratedBMCIS
 from pyrt.workers import START_METHOD_VARIABLE
 from PyRT_Common import (Constant, CosineLobe, CosinePDF, Function, UniformPDF,
@@ -288,3 +289,17 @@ def test_a_pool_that_cannot_serve_says_what_to_fix_before_rendering(tmp_path, ma
     with pytest.raises((ValueError, TypeError), match=message) as error:
         integrator.render(workers=1, progress=False)
     assert "\n" not in str(error.value)
+
+
+@pytest.mark.parametrize("kind", INTEGRATORS)
+def test_flat_loop_gives_renders_image_bit_for_bit(tmp_path, kind):
+    integrator_class, _, pdf, p_func = INTEGRATORS[kind]
+    pool = make_pool(3, 8, pdf, p_func)
+    size, seed = 16, 4
+    random_module.seed(seed)
+    stream_seed = int(random_module.random() * 2 ** 53)  # render()'s one draw
+    expected = render(tmp_path, integrator_class(8, pool, str(tmp_path / "r")),
+                      sky_sphere_scene(size), seed)
+    flat = flat_bmc(sky_sphere_scene(size), pool, stream_seed,
+                    cosine_prior=integrator_class is BMCISIntegrator)
+    assert expected.any() and np.array_equal(flat, expected)
