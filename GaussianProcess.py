@@ -158,10 +158,10 @@ class GP:
     def compute_inv_Q(self):
         # FRAMEWORK ONLY BEGIN
         positions = positions_array(self.samples_pos)
-        K = covariance_matrix(self.cov_func, positions)  # None: a kernel of one's own
-        if K is not None:
-            self.Q = check_covariance(K + self.noise ** 2 * np.identity(len(positions)),
-                                      positions, self.noise)
+        known = covariance_matrix(self.cov_func, positions)  # None: a kernel of one's own
+        if known is not None:
+            self.Q = check_covariance(known.K + self.noise ** 2 * np.identity(len(positions)),
+                                      positions, self.noise, known.positive)
             return np.linalg.inv(self.Q)
         # FRAMEWORK ONLY END
         n = len(self.samples_pos)

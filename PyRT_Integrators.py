@@ -458,4 +458,5 @@ class BMCISIntegrator(BayesianMonteCarloIntegrator):
 register_fused("phong", PhongIntegrator)
 register_fused("cmc", CMCIntegrator)
 register_fused("bmc", BayesianMonteCarloIntegrator)
+register_fused("bmcis", BMCISIntegrator)
 # FRAMEWORK ONLY END

@@ -1,5 +1,5 @@
-"""The flat loops: the course's Phong and classic Monte Carlo images made with no objects
-per pixel and no calls.
+"""The flat loops: the course's Phong, classic and Bayesian Monte Carlo images made with
+no objects per pixel and no calls per ray.
 
 flat_phong renders Figures 1 and 5 (Phong on scenes of spheres and parallelograms lit by
 point lights) in one Python loop: plain floats, numpy only for each row's camera
@@ -137,24 +137,131 @@ def flat_phong(scene) -> np.ndarray:
     return image
 
 
-def flat_cmc(scene, samples: int, stream_seed: int) -> np.ndarray:
+def flat_cmc(scene, samples: int, stream_seed: int, pdf_exponent=None) -> np.ndarray:
     """The image CMCIntegrator(samples, ...) renders of a scene of Spheres and
     Parallelograms with Lambertian BRDFs, no emitting object and an environment map (or
-    none), made by one flat loop: render()'s image bit for bit when stream_seed is the
-    number render() drew to seed its rows (pyrt.rows.RowStreams). The terms of the map are
-    float32, as the course's arithmetic makes them (pyrt.acceleration.monte_carlo), summed
-    with numpy per pixel."""
+    none), made by one flat loop (flat_hemisphere): render()'s image bit for bit when
+    stream_seed is the number render() drew to seed its rows (pyrt.rows.RowStreams).
+    pdf_exponent None samples UniformPDF, e CosinePDF(e)."""
+    return flat_hemisphere(scene, stream_seed, ClassicPixels(samples, pdf_exponent),
+                           "flat_cmc")
+
+
+def flat_bmc(scene, pool: list, stream_seed: int, cosine_prior=False) -> np.ndarray:
+    """The image BayesianMonteCarloIntegrator(n, pool, ...) renders (BMCISIntegrator's with
+    cosine_prior) of a scene as flat_cmc's, with a pool of PyRT's GPs, made by the same
+    flat loop: render()'s image bit for bit for render()'s stream seed."""
+    return flat_hemisphere(scene, stream_seed, BayesianPixels(pool, cosine_prior),
+                           "flat_bmc")
+
+
+class ClassicPixels:
+    """A pixel of classic Monte Carlo for flat_hemisphere: the sample directions drawn as
+    sample_set_hemisphere draws them (u1, u2 per sample, all first), those facing the
+    normal traced; the map's terms float32, as the course's arithmetic makes them
+    (pyrt.acceleration.monte_carlo), summed with numpy."""
+
+    def __init__(self, samples, pdf_exponent=None):
+        self.samples, self.exponent = samples, pdf_exponent
+
+    def directions(self, n, v, u):
+        """(rays, cosines, densities) of a pixel's samples: the unit directions
+        to trace and their cosine to the normal n and density, in the order of the
+        samples; center_around_normal's frame is n, v, u."""
+        (nx, ny, nz), (vx, vy, vz), (ux, uy, uz) = n, v, u
+        draws = [random.random() for _ in range(2 * self.samples)]
+        e, prob = self.exponent, 1 / (2 * pi)
+        rays, cosines, densities = [], [], []
+        for k in range(0, 2 * self.samples, 2):
+            u1, u2 = draws[k], draws[k + 1]
+            phi = 2 * pi * u1
+            if e is None:
+                sy, sin_theta = u2, sqrt(1 - u2 ** 2)
+            else:
+                sy, sin_theta = u2 ** (1 / (e + 1)), sqrt(1 - u2 ** (2 / (e + 1)))
+                prob = (e + 1) / (2 * pi) * sy ** e
+            sx, sz = sin(phi) * sin_theta, cos(phi) * sin_theta
+            rx, ry, rz = (vx * sx + nx * sy + ux * sz, vy * sx + ny * sy + uy * sz,
+                          vz * sx + nz * sy + uz * sz)
+            s = 1.0 / sqrt(rx * rx + ry * ry + rz * rz)
+            rx, ry, rz = rx * s, ry * s, rz * s
+            cos_theta = nx * rx + ny * ry + nz * rz
+            if cos_theta > 0.0:
+                rays.append((rx, ry, rz))
+                cosines.append(cos_theta)
+                densities.append(prob)
+        return rays, cosines, densities
+
+    def color(self, kd, texels, traced, cosines, densities):
+        """The pixel's colour from the texels its traced samples `traced` (indices into the
+        lists of directions) see."""
+        kr, kg, kb = kd
+        factors = [(kr * cosines[j], kg * cosines[j], kb * cosines[j]) for j in traced]
+        terms = texels * np.array(factors).astype(np.float32)
+        terms /= np.array([densities[j] for j in traced], dtype=np.float32)[:, None]
+        return np.cumsum(terms, axis=0)[-1] / np.float32(self.samples)
+
+
+class BayesianPixels:
+    """A pixel of Bayesian Monte Carlo for flat_hemisphere: a GP of the pool and an angle
+    drawn, the GP's directions turned about y and centred, the BRDF's values times the
+    texels, summed with the GP's weights in compute_integral_BMC's order."""
+
+    def __init__(self, pool, cosine_prior):
+        self.pool, self.cosine_prior = pool, cosine_prior
+        self.positions = [[(o.x, o.y, o.z) for o in gp.samples_pos] for gp in pool]
+        self.weights = [np.asarray(gp.weights, dtype=float) for gp in pool]
+        self.gp = 0
+
+    def directions(self, n, v, u):
+        (nx, ny, nz), (vx, vy, vz), (ux, uy, uz) = n, v, u
+        self.gp = floor(random.random() * len(self.pool))
+        alpha = 2 * pi * random.random()
+        c, s = cos(alpha), sin(alpha)
+        rays, cosines = [], []
+        for sx, sy, sz in self.positions[self.gp]:
+            sx, sz = sx * c + sz * s, -sx * s + sz * c
+            rx, ry, rz = (vx * sx + nx * sy + ux * sz, vy * sx + ny * sy + uy * sz,
+                          vz * sx + nz * sy + uz * sz)
+            q = 1.0 / sqrt(rx * rx + ry * ry + rz * rz)
+            rx, ry, rz = rx * q, ry * q, rz * q
+            rays.append((rx, ry, rz))
+            cosines.append(nx * rx + ny * ry + nz * rz)
+        if not self.cosine_prior:  # the BRDF's value is BLACK there: not traced
+            keep = [j for j, c in enumerate(cosines) if c > 0.0]
+            rays, cosines = [rays[j] for j in keep], [cosines[j] for j in keep]
+            weights = self.weights[self.gp][keep]
+        else:
+            weights = self.weights[self.gp]
+        return rays, cosines, weights
+
+    def color(self, kd, texels, traced, cosines, weights):
+        kr, kg, kb = kd
+        if self.cosine_prior:
+            factors = [(kr, kg, kb)] * len(traced)
+        else:
+            factors = [(kr * cosines[j], kg * cosines[j], kb * cosines[j]) for j in traced]
+        values = texels * np.array(factors).astype(np.float32)
+        terms = np.concatenate((np.zeros((1, 3)), values * weights[traced][:, None]))
+        return np.cumsum(terms, axis=0)[-1]
+
+
+def flat_hemisphere(scene, stream_seed: int, pixels, name: str) -> np.ndarray:
+    """The image of a Monte Carlo integrator over the hemisphere of each hit, made by one
+    flat loop: the camera ray of each pixel, then pixels.directions(n, v, u), the sample
+    rays of the pixel, each traced to its nearest hit, and pixels.color of the texels of
+    those that see the map (a sample ray that hits an object gets its emission, which is
+    none). Each row draws from its own stream, as render() seeds it."""
     for obj in scene.object_list:
         if obj.emission.r or obj.emission.g or obj.emission.b:
-            raise ValueError(f"flat_cmc renders no emitting object, such as {obj!r}")
-    camera, objects = scene.camera, flat_objects(scene, "flat_cmc")
+            raise ValueError(f"{name} renders no emitting object, such as {obj!r}")
+    camera, objects = scene.camera, flat_objects(scene, name)
     env_map = scene.env_map
     if env_map is not None:
         texels, last_row, last_column = env_map.env_map_hdr, env_map.height - 1, env_map.width - 1
     low, high = -EDGE_TOLERANCE, 1.0 + EDGE_TOLERANCE
     width, height = camera.width, camera.height
     scale_y, screen_x = screen_coordinates(camera)
-    two_pi, prob = 2 * pi, 1 / (2 * pi)
     ax, ay, az = 0.00319, 1.0, 0.0078  # center_around_normal's jittered up
     image = np.zeros((height, width, 3))
     for y in range(height):
@@ -168,9 +275,9 @@ def flat_cmc(scene, samples: int, stream_seed: int) -> np.ndarray:
             # hit of each, a later object only when strictly nearer.
             ox = oy = oz = 0.0
             rx, ry, rz, t_min, t_max = dx, dy, dz, 0.0, INFINITY
-            rows, columns, factors = [], [], []  # the map's terms: texel and f
-            draws = None  # the pixel's random numbers, once the camera ray has hit
-            k, cos_theta = 0, 0.0  # the next draw, and the sample ray's cosine
+            rows, columns, traced = [], [], []  # the map's texels, and whose they are
+            rays = None  # the pixel's sample rays, once the camera ray has hit
+            k = 0  # the next sample ray
             while True:
                 nearest = None
                 for sphere, c, kd in objects:
@@ -211,14 +318,14 @@ def flat_cmc(scene, samples: int, stream_seed: int) -> np.ndarray:
                     if nearest is not None and t == t_max:
                         continue  # as far as the nearest so far: the first one stays
                     nearest, t_max = (sphere, c, kd), t
-                if draws is None:  # the camera ray's nearest hit
+                if rays is None:  # the camera ray's nearest hit
                     if nearest is None:
                         if env_map is not None:
                             u = (1 + (1 / pi) * atan2(dx, -dz)) / 2
                             v = (1 / pi) * acos(min(1.0, max(-1.0, dy)))
                             image[y, x] = texels[floor(v * last_row), floor(u * last_column)]
                         break
-                    sphere, c, (kr, kg, kb) = nearest
+                    sphere, c, hit_kd = nearest
                     t = t_max
                     if sphere:  # the point along the outward normal, one radius out
                         cx, cy, cz, r = c
@@ -236,35 +343,23 @@ def flat_cmc(scene, samples: int, stream_seed: int) -> np.ndarray:
                     s = 1.0 / sqrt(vx * vx + vy * vy + vz * vz)
                     vx, vy, vz = vx * s, vy * s, vz * s
                     ux, uy, uz = vy * nz - vz * ny, vz * nx - vx * nz, vx * ny - vy * nx
-                    draws = [random.random() for _ in range(2 * samples)]
+                    rays, cosines, per_sample = pixels.directions((nx, ny, nz), (vx, vy, vz),
+                                                             (ux, uy, uz))
                     ox, oy, oz = px, py, pz
                 elif nearest is None and env_map is not None:  # the sample ray sees the map
                     u = (1 + (1 / pi) * atan2(rx, -rz)) / 2
                     v = (1 / pi) * acos(min(1.0, max(-1.0, ry)))
                     rows.append(floor(v * last_row))
                     columns.append(floor(u * last_column))
-                    factors.append((kr * cos_theta, kg * cos_theta, kb * cos_theta))
-                # The next sample ray in the hemisphere around the normal, facing it
-                while k < 2 * samples:
-                    u1, u2 = draws[k], draws[k + 1]
-                    k += 2
-                    phi = two_pi * u1
-                    sin_theta = sqrt(1 - u2 ** 2)
-                    sx, sy, sz = sin(phi) * sin_theta, u2, cos(phi) * sin_theta
-                    rx, ry, rz = (vx * sx + nx * sy + ux * sz, vy * sx + ny * sy + uy * sz,
-                                  vz * sx + nz * sy + uz * sz)
-                    s = 1.0 / sqrt(rx * rx + ry * ry + rz * rz)
-                    rx, ry, rz = rx * s, ry * s, rz * s
-                    cos_theta = nx * rx + ny * ry + nz * rz
-                    if cos_theta > 0.0:
-                        break
-                else:
+                    traced.append(k - 1)
+                if k == len(rays):
                     break  # no sample left: the pixel is done
+                rx, ry, rz = rays[k]  # the next sample ray
+                k += 1
                 t_min, t_max = EPSILON, HUGEVALUE
             if rows:
-                terms = texels[rows, columns] * np.array(factors).astype(np.float32)
-                terms /= np.float32(prob)
-                image[y, x] = np.cumsum(terms, axis=0)[-1] / np.float32(samples)
+                image[y, x] = pixels.color(hit_kd, texels[rows, columns], traced, cosines,
+                                           per_sample)
     return image
 
 

@@ -8,7 +8,7 @@ own eval: on arrays when it computes the same numbers there, else one direction 
 """
 import math
 from dataclasses import dataclass
-from typing import Callable, Optional
+from typing import Callable, NamedTuple, Optional
 
 import numpy as np
 
@@ -25,6 +25,13 @@ class RadialProfile:
 
     kind: str
     parameter: float
+
+    @property
+    def positive(self) -> bool:
+        """Whether every matrix of the kernel is positive semi-definite: the squared
+        exponential's always; the Sobolev kernel's for s up to 2, where r^(2s-2) is
+        conditionally negative definite."""
+        return self.kind == "se" or self.parameter <= 2
 
     def __call__(self, r2: np.ndarray) -> np.ndarray:
         if self.kind == "sobolev":
@@ -102,10 +109,17 @@ def pairwise_r2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return r2
 
 
-def covariance_matrix(cov_func, positions: np.ndarray) -> Optional[np.ndarray]:
-    """Q without noise, K[i, j] = k(pos_i, pos_j), from the kernel's radial profile; None
-    for a kernel of one's own, which GaussianProcess.py's loop evaluates."""
+class Covariances(NamedTuple):
+    """K[i, j] = k(pos_i, pos_j), and whether the kernel makes it positive semi-definite."""
+
+    K: np.ndarray
+    positive: bool
+
+
+def covariance_matrix(cov_func, positions: np.ndarray) -> Optional[Covariances]:
+    """Q without noise, K, from the kernel's radial profile; None for a kernel of one's
+    own, which GaussianProcess.py's loop evaluates."""
     profile = radial_profile(cov_func)
     if profile is None:
         return None
-    return profile(pairwise_r2(positions, positions))
+    return Covariances(profile(pairwise_r2(positions, positions)), profile.positive)

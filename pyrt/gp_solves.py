@@ -25,16 +25,21 @@ def closest_pair(positions: np.ndarray):
     return min(i, j), max(i, j), float(np.sqrt(r2[i, j]))
 
 
-def check_covariance(Q: np.ndarray, positions: np.ndarray, noise: float) -> np.ndarray:
+def check_covariance(Q: np.ndarray, positions: np.ndarray, noise: float,
+                     positive_kernel: bool = False) -> np.ndarray:
     """Q itself when it can be inverted in double precision; else a ValueError that says
     to add noise or remove the duplicate (or nearly equal) sample, or that the kernel is
-    not a covariance."""
+    not a covariance. positive_kernel: K is known to be positive semi-definite (PyRT's
+    kernels), so that Q's eigenvalues are at least noise^2."""
     if not np.all(np.isfinite(Q)):
         raise ValueError("GP: the covariance matrix Q holds values that are not finite; "
                          "the kernel's eval returns inf or NaN for some pair of samples")
     try:
         np.linalg.cholesky(Q)
-        singular = np.linalg.cond(Q) > WORST_CONDITION
+        # With K positive semi-definite, Q's eigenvalues lie between noise^2 and its trace:
+        # the condition number is computed only when that bound does not settle it
+        settled = positive_kernel and np.trace(Q) <= WORST_CONDITION * noise ** 2
+        singular = not settled and np.linalg.cond(Q) > WORST_CONDITION
     except np.linalg.LinAlgError:
         singular = True
     if not singular:

@@ -455,3 +455,10 @@ def counted_calls(monkeypatch, fused_class):
 
     monkeypatch.setattr(fused_class, "compute_color", counted)
     return calls
+
+
+def with_map_and_emitter(size):
+    """The Cornell box with its area light, and PyRT's sky map as well."""
+    scene = cornell_box_scene(0.75, 2, areaLS=True, width=size, height=size)
+    scene.env_map = EnvironmentMap.from_texels(sky_map())
+    return scene

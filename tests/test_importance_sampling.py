@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import pyrt.acceleration.accelerated
+from benchmarks.flat_loop import flat_cmc
 from helpers import (ALBEDO, EMISSION, FURNACE_CENTRE, FURNACE_RADIUS, RADIANCE,
                      emissive_box_scene, furnace_scene, render_image, sky_sphere_scene,
                      sphere_pixels)
@@ -129,3 +130,13 @@ def test_file_names_tell_the_pdf_and_never_collide():
 def test_a_pdf_that_is_not_one_says_what_to_pass():
     with pytest.raises(TypeError, match=r"pdf must be a PDF such as UniformPDF\(\)"):
         CMCIntegrator(40, "img", pdf="cosine")
+
+
+def test_flat_loop_gives_renders_importance_sampled_image_bit_for_bit(tmp_path):
+    size, samples, seed = 16, 8, 6
+    random_module.seed(seed)
+    stream_seed = int(random_module.random() * 2 ** 53)  # render()'s one draw
+    expected = render(tmp_path, CMCISIntegrator(samples, str(tmp_path / "f")),
+                      sky_sphere_scene(size), seed)
+    flat = flat_cmc(sky_sphere_scene(size), samples, stream_seed, pdf_exponent=1)
+    assert expected.any() and np.array_equal(flat, expected)

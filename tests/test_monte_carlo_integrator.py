@@ -23,7 +23,7 @@ from benchmarks.flat_loop import flat_cmc
 from helpers import (ALBEDO, EMISSION, FURNACE_CENTRE, FURNACE_RADIUS, RADIANCE,  # noqa: F401
                      course_renders, emissive_box_scene, emitter, furnace_scene,
                      global_generator_kept, lambertian, render_image, sky_sphere_scene,
-                     sphere_pixels)
+                     sphere_pixels, with_map_and_emitter)
 from pyrt.acceleration.monte_carlo import OWN_OBJECT_CLEARANCE
 from pyrt.environment_maps import sky_map
 from pyrt.workers import START_METHOD_VARIABLE
@@ -309,13 +309,6 @@ class ReadableCMC(CMCIntegrator):
 
     def compute_color(self, ray):
         return super().compute_color(ray)
-
-
-def with_map_and_emitter(size):
-    """The Cornell box with its area light, and PyRT's sky map as well."""
-    scene = cornell_box_scene(0.75, 2, areaLS=True, width=size, height=size)
-    scene.env_map = EnvironmentMap.from_texels(sky_map())
-    return scene
 
 
 def changed_fingerprint(monkeypatch):

@@ -1,5 +1,5 @@
 """The with-block that stands the fast queries and the fused integrators (Phong, classic
-Monte Carlo) in for a scene's and an integrator's own methods during a render, and takes
+and Bayesian Monte Carlo) in for a scene's and an integrator's own methods during a render, and takes
 them off again."""
 import sys
 from contextlib import contextmanager
@@ -7,6 +7,7 @@ from contextlib import contextmanager
 from PyRT_Core import Scene
 from pyrt.acceleration.fingerprints import (INTERSECT_FUNCTIONS, QUERY_FUNCTIONS,
                                             fused_integrator, fused_unchanged, unchanged)
+from pyrt.acceleration.bayesian import AcceleratedBMC, AcceleratedBMCIS
 from pyrt.acceleration.monte_carlo import AcceleratedCMC
 from pyrt.acceleration.phong import AcceleratedPhong
 from pyrt.acceleration.queries import AcceleratedQueries
@@ -16,7 +17,8 @@ from pyrt.acceleration.queries import AcceleratedQueries
 MIN_RAYS_PER_LIST = 8
 QUERIES = ("closest_hit", "any_hit")
 # The fused integrators, by the name under which their integrator class registers
-FUSED_INTEGRATORS = {"phong": AcceleratedPhong, "cmc": AcceleratedCMC}
+FUSED_INTEGRATORS = {"phong": AcceleratedPhong, "cmc": AcceleratedCMC, "bmc": AcceleratedBMC,
+                     "bmcis": AcceleratedBMCIS}
 
 
 @contextmanager
@@ -24,8 +26,8 @@ def accelerated(integrator, rays=None):
     """A with-block during which the queries of the integrator's scene are those of an
     AcceleratedQueries, when it may stand in for them (can_accelerate) and `rays`, the
     camera rays the block traces, repay its setup (None: assume they do); and, for PyRT's
-    own PhongIntegrator and CMCIntegrator, compute_color that of an AcceleratedPhong or an
-    AcceleratedCMC. Nothing may change the scene meanwhile, as during a render."""
+    own PhongIntegrator and Monte Carlo integrators, compute_color that of their fused
+    version (FUSED_INTEGRATORS). Nothing may change the scene meanwhile, as during a render."""
     scene = integrator.scene
     if not can_accelerate(scene) or (
             rays is not None and rays < MIN_RAYS_PER_LIST * (len(scene.pointLights) + 1)):

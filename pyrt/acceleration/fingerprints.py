@@ -1,7 +1,7 @@
 """Which functions the fast paths repeat, and whether they are still what they were when
 the fast paths were proven equal to them: fingerprints of their source, and the
-integrators (Phong, classic Monte Carlo) that a fused version may stand in for, which
-their own module registers."""
+integrators (Phong, classic and Bayesian Monte Carlo) that a fused version may stand in
+for, which their own module registers."""
 import hashlib
 import inspect
 import sys
@@ -82,9 +82,40 @@ CMC_CALLS = {
     "PyRT_Common.RGBColor.__truediv__": "85e151eb11f94b85",
     "PyRT_Common.RGBColor.multiply": "db6e9f232b4675f8",
 }
+# BayesianMonteCarloIntegrator.compute_color and what it calls, as for Phong; the GP's
+# add_sample_val and compute_integral_BMC are called by the fused version too, not repeated
+BMC_FUNCTIONS = {
+    "BayesianMonteCarloIntegrator.compute_color": "2533396463c3491a",
+    "BayesianMonteCarloIntegrator.pick_sample_set": "d9bee35e840dfc0e",
+    "BayesianMonteCarloIntegrator.sample_value": "a11f784f8639baf6",
+    "Integrator.incoming_light": "0fdae8403b738c7e",
+    "center_around_normal": "35252ba91566888f",
+    "rotate_around_y": "7dc88a64ef41cc6c",
+    "Normalize": "41257e0e7f7f37cd",
+    "Cross": "231231219460270a",
+}
+BMC_CALLS = dict(CMC_CALLS)  # the same methods of the vectors, colours, BRDF and map
+# BMCISIntegrator's: BayesianMonteCarloIntegrator's, with values of its own
+BMCIS_FUNCTIONS = dict(BMC_FUNCTIONS, **{"BMCISIntegrator.sample_value": "dc976d52942d97cb"})
+# PyRT's GP (GaussianProcess.py), whose compute_integral_BMC the fused Bayesian Monte Carlo
+# repeats, and whose add_sample_val it leaves out for finite values, which it accepts
+GP_FUNCTIONS = {
+    "GP.compute_integral_BMC": "0e84c33a3f1fc0f4",
+    "GP.add_sample_val": "ebf8fb32be7e7bec",
+}
 # The integrators whose compute_color a fused version repeats, by name: the functions of
 # their own module (looked up there) and of the modules beneath it
-FUSED = {"phong": (PHONG_FUNCTIONS, PHONG_CALLS), "cmc": (CMC_FUNCTIONS, CMC_CALLS)}
+FUSED = {"phong": (PHONG_FUNCTIONS, PHONG_CALLS), "cmc": (CMC_FUNCTIONS, CMC_CALLS),
+         "bmc": (BMC_FUNCTIONS, BMC_CALLS), "bmcis": (BMCIS_FUNCTIONS, BMC_CALLS)}
+
+
+def own_gp(gp) -> bool:
+    """Whether gp is a GP of PyRT's GaussianProcess.py whose add_sample_val and
+    compute_integral_BMC are those the fused Bayesian Monte Carlo was proven equal to."""
+    cls = type(gp)
+    return (cls.__name__ == "GP" and cls.__module__ == "GaussianProcess"
+            and not {"add_sample_val", "compute_integral_BMC"} & set(vars(gp))
+            and unchanged(GP_FUNCTIONS, {"GP": cls}))
 
 
 def unchanged(functions, namespace=None) -> bool:
@@ -154,5 +185,7 @@ def mirrored_functions():
     tables = [(QUERY_FUNCTIONS, None), (dict(INTERSECT_FUNCTIONS.values()), None)]
     for name, (functions, calls) in FUSED.items():
         tables += [(calls, None), (functions, fused_namespace(name))]
+    if "GaussianProcess" in sys.modules:
+        tables.append((GP_FUNCTIONS, vars(sys.modules["GaussianProcess"])))
     return [(name, digest, fingerprint(current(name, namespace)))
             for functions, namespace in tables for name, digest in functions.items()]

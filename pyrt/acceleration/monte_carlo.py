@@ -1,6 +1,7 @@
 """AcceleratedCMC: CMCIntegrator.compute_color, equal to it bit for bit for the same draws
 of random(), on plain floats, with the fast queries for its sample rays."""
 from math import acos, atan2, cos, floor, pi, sin, sqrt
+from typing import NamedTuple
 
 import numpy as np
 
@@ -23,6 +24,17 @@ FUSED_PDFS = (UniformPDF, CosinePDF)
 # below EPSILON (1e-4), so the own object is not tested (a sphere is convex, a flat object
 # is met at its plane only).
 OWN_OBJECT_CLEARANCE = 1e-9
+
+
+class HitFrame(NamedTuple):
+    """Where a camera ray hits: the object's index and Lambertian kd, the hit point, its
+    normal n and center_around_normal's frame v, u about it, as (x, y, z) tuples."""
+    index: int
+    kd: object
+    point: tuple
+    normal: tuple
+    v: tuple
+    u: tuple
 
 
 class AcceleratedCMC:
@@ -53,7 +65,7 @@ class AcceleratedCMC:
             self.last_column, self.last_row = env_map.width - 1, env_map.height - 1
         self.samples = integrator.n_samples
         self.cosine_exponents = None  # UniformPDF; for CosinePDF(exp), its exponents
-        pdf = integrator.pdf
+        pdf = getattr(integrator, "pdf", None)  # a Bayesian integrator has none
         if type(pdf) is CosinePDF:
             e = pdf.exp  # generate_dir's and get_val's constants, as they compute them
             self.cosine_exponents = (1 / (e + 1), 2 / (e + 1), (e + 1) / (2 * pi), e)
@@ -78,8 +90,10 @@ class AcceleratedCMC:
         return scene.env_map is None or not any(
             obj.emission.r or obj.emission.g or obj.emission.b for obj in scene.object_list)
 
-    def compute_color(self, ray):
-        """CMCIntegrator.compute_color(ray)."""
+    def camera_hit(self, ray):
+        """The hit of a camera ray as a HitFrame, or the pixel's colour when the ray misses
+        (the map, or BLACK), or when the plain code must make it (a direction that is not
+        of unit length, a BRDF that is not a Lambertian)."""
         d, o = ray.d, ray.o
         dx, dy, dz, ox, oy, oz = d.x, d.y, d.z, o.x, o.y, o.z
         squares = dx * dx + dy * dy + dz * dz
@@ -97,18 +111,45 @@ class AcceleratedCMC:
             return self.plain_color(ray)
         px, py, pz, nx, ny, nz = POINT_AND_NORMAL[test](constants, ox, oy, oz, dx, dy, dz,
                                                         rx, ry, rz, t)
-        kd = brdf.kd
-        kr, kg, kb = kd.r, kd.g, kd.b
         # center_around_normal's frame: w = n, v = Normalize(Cross(up, w)), u = Cross(v, w)
         ax, ay, az = JITTERED_UP
         vx, vy, vz = unit_components(ay * nz - az * ny, az * nx - ax * nz, ax * ny - ay * nx)
         ux, uy, uz = vy * nz - vz * ny, vz * nx - vx * nz, vx * ny - vy * nx
+        return HitFrame(index, brdf.kd, (px, py, pz), (nx, ny, nz), (vx, vy, vz),
+                        (ux, uy, uz))
+
+    def sample_hit(self, point, w, cos_theta, index):
+        """The index of the object that scene.closest_hit(Ray(point, w)) finds, as
+        AcceleratedQueries.nearest answers it (w, of unit length, normalised once more
+        as the plain code does; only a strictly nearer hit replaces the nearest so far),
+        or None; cos_theta is w's cosine to the normal of object `index`, which w leaves."""
+        px, py, pz = point
+        wx, wy, wz = w
+        inverse = 1.0 / sqrt(wx * wx + wy * wy + wz * wz)  # Normalize(wi) once more
+        rx, ry, rz = wx * inverse, wy * inverse, wz * inverse
+        hit_index, t_max = None, HUGEVALUE
+        tests = self.others[index] if cos_theta > self.own_clearance else self.tests
+        for test, constants, object_index in tests:
+            t = test(constants, px, py, pz, wx, wy, wz, rx, ry, rz, EPSILON, t_max)
+            if t is not None and (hit_index is None or t < t_max):
+                hit_index, t_max = object_index, t
+        return hit_index
+
+    def compute_color(self, ray):
+        """CMCIntegrator.compute_color(ray)."""
+        frame = self.camera_hit(ray)
+        if type(frame) is not HitFrame:
+            return frame
+        point, (nx, ny, nz), (vx, vy, vz), (ux, uy, uz) = frame[2:]
+        kd = frame.kd
+        kr, kg, kb = kd.r, kd.g, kd.b
         # sample_set_hemisphere(n, pdf): u1 then u2 for each sample, all first
         draw = self.random
         draws = [draw() for _ in range(2 * self.samples)]
         prob, cosine = UNIFORM_DENSITY, self.cosine_exponents
+        px, py, pz = point
         tests, emissions, env_map = self.tests, self.emissions, self.env_map
-        others, clearance = self.others[index], self.own_clearance
+        others, clearance = self.others[frame.index], self.own_clearance
         red = green = blue = 0.0  # the sum of the terms that are doubles
         map_rows, map_columns, map_factors, map_probs = [], [], [], []  # float32 terms
         for k in range(0, len(draws), 2):
@@ -130,9 +171,8 @@ class AcceleratedCMC:
             cos_theta = nx * wx + ny * wy + nz * wz  # Lambertian.get_value(wi, wo, n)
             if not cos_theta > 0.0:
                 continue  # f is BLACK: the term adds nothing
-            # scene.closest_hit(Ray(hit_point, wi)), as AcceleratedQueries.nearest answers
-            # it (wi, normalised above, is of unit length): only a strictly nearer hit
-            # replaces the nearest so far
+            # sample_hit(point, w, cos_theta, index), written out: a call per sample would
+            # cost a sixth of the render
             inverse = 1.0 / sqrt(wx * wx + wy * wy + wz * wz)  # Normalize(wi) once more
             rx, ry, rz = wx * inverse, wy * inverse, wz * inverse
             hit_index, t_max = None, HUGEVALUE
@@ -147,7 +187,7 @@ class AcceleratedCMC:
                     green += eg * (kg * cos_theta) / prob
                     blue += eb * (kb * cos_theta) / prob
             elif env_map is not None:  # env_map.getValue(wi): the texel under (u, v)
-                u = (1 + (1 / pi) * atan2(wx, -wz)) / 2
+                u = (1 + (1 / pi) * atan2(wx, -wz)) / 2  # texel_of(w), written out
                 v = (1 / pi) * acos(min(1.0, max(-1.0, wy)))
                 map_rows.append(floor(v * self.last_row))
                 map_columns.append(floor(u * self.last_column))
@@ -156,6 +196,12 @@ class AcceleratedCMC:
         if map_rows:
             return self.map_color(map_rows, map_columns, map_factors, map_probs)
         return RGBColor(red / self.samples, green / self.samples, blue / self.samples)
+
+    def texel_of(self, wx, wy, wz):
+        """(row, column) of the texel env_map.getValue(w) reads for the unit vector w."""
+        u = (1 + (1 / pi) * atan2(wx, -wz)) / 2
+        v = (1 / pi) * acos(min(1.0, max(-1.0, wy)))
+        return floor(v * self.last_row), floor(u * self.last_column)
 
     def map_color(self, rows, columns, factors, probs):
         """The colour of a pixel whose terms are the map's (see above): the float32 sum of
