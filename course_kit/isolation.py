@@ -18,7 +18,8 @@ Before the student's code is imported, the step's process
   included: a process that prints without end is killed), and writes no core file,
 - keeps on its import path only the working copy and Python's own libraries,
 - installs an audit hook that refuses, and notes, every write outside the working copy or
-  into a tests/ folder in it, and every start of another process.
+  into a tests/ folder in it, every start of another process, and every opening of the
+  framework's answers of Practice 3 (FRAMEWORK_ANSWERS: its GaussianProcess.py, pyrt/gp_*).
 Then it runs its task with the student's code: "collect" renders and answers for the
 checks named (with the practice's render module the task names: checks/practice1_render.py
 or checks/practice2_render.py, loaded by the server before any step), "story" tells a
@@ -79,6 +80,11 @@ WRITING_EVENTS = {"os.remove": 1, "os.rmdir": 1, "os.mkdir": 1, "os.rename": 2,
                   "os.chown": 1, "os.utime": 1, "shutil.rmtree": 1}
 PROCESS_EVENTS = {"subprocess.Popen", "os.system", "os.exec", "os.posix_spawn", "os.spawn",
                   "os.fork", "os.forkpty"}
+# The framework's answers of Practice 3 (its GaussianProcess.py and PyRT's exact z, Q and
+# weights beneath it), which a step may not even read: (folder, file name prefix) pairs
+FRAMEWORK_ANSWERS = ((KIT.parent, "GaussianProcess."), (KIT.parent / "__pycache__",
+                     "GaussianProcess."), (KIT.parent / "pyrt", "gp_"),
+                     (KIT.parent / "pyrt" / "__pycache__", "gp_"))
 WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_APPEND | os.O_CREAT | os.O_TRUNC
 PR_SET_CHILD_SUBREAPER, PR_SET_NO_NEW_PRIVS = 36, 38  # Linux's prctl options
 
@@ -133,7 +139,20 @@ def guard(workdir, refused):
         if refusal not in refused and len(refused) < MAX_REFUSALS:
             refused.append(refusal)
 
+    def framework_answer(path):
+        """Whether path is one of FRAMEWORK_ANSWERS."""
+        if isinstance(path, int) or path is None:
+            return False
+        name = os.path.realpath(os.fsdecode(path))
+        return any(os.path.dirname(name) == os.path.realpath(folder)
+                   and os.path.basename(name).startswith(prefix)
+                   for folder, prefix in FRAMEWORK_ANSWERS)
+
     def hook(event, args):
+        if event == "open" and framework_answer(args[0]):
+            note(f"read the framework's answers: {os.fsdecode(args[0])} (open)")
+            raise PermissionError("grading: refused, the framework's answers are not "
+                                  "readable while grading")
         if event == "open":
             paths = [args[0]] if args[2] & WRITE_FLAGS else []
         elif event in WRITING_EVENTS:

@@ -96,11 +96,12 @@ PRACTICES = {
         steps={
             "3.1": "Assignment 3.1: the Gaussian process (compute_inv_Q, compute_z, "
                    "compute_integral_BMC)",
-            "3.2": "Assignment 3.2: Bayesian Monte Carlo in the workbench",
             "3.3": "Assignment 3.3: the Bayesian Monte Carlo integrator",
             "3.3.2": "Assignment 3.3.2: a random rotation and a pool of GPs per hit",
         },
-        optional_steps=(),
+        # the workbench's BMC: checked when it is the handout's compute_estimate_bmc, not
+        # graded (a course-style workbench is a script with no function to call)
+        optional_steps=("3.2",),
         # Practices 1 and 2's checks lend their verdicts, images and scenes
         check_files=BAYESIAN_CHECK_FILES + ("test_practice3.py",),
         expected=(),

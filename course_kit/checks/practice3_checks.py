@@ -85,9 +85,9 @@ def judge_rendered(rendered, draw, folder):
         return check.fail(f"your code returned {rendered.first_color}"
                           + (" (a stub's pass returns None)"
                              if rendered.first_color == "None" else "")
-                          + ", where " + ("an RGBColor" if "furnace" in rendered.name
+                          + ", where " + ("an RGBColor is" if "furnace" in rendered.name
                                           or rendered.name in ("bmc_sum", "bmc_pool")
-                                          else "numbers") + " are needed")
+                                          else "numbers are") + " needed")
     return JUDGES[rendered.name](check, rendered, draw, folder)
 
 

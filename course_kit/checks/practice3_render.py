@@ -10,8 +10,9 @@ practice3_checks.py judges this data. Here your own modules run:
 - "bmc_furnace", "bmc_pool", "bmcis_furnace": your BayesianMonteCarloIntegrator (3.3, 3.3.2)
   and BMCISIntegrator (4.2) with GPs of the kit, whose weights practice3_scenes.py
   computed: a mistake of your GaussianProcess.py costs Assignment 3.1 alone;
-- "cmcis_furnace": classic Monte Carlo with cosine sampling (4.1): CMCIntegrator(...,
-  pdf=CosinePDF(1)) when your CMCIntegrator takes pdf, else your CMCISIntegrator.
+- "cmcis_furnace": classic Monte Carlo with cosine sampling (4.1): your CMCISIntegrator,
+  or CMCIntegrator(..., pdf=CosinePDF(1)) when you have none and your CMCIntegrator takes
+  pdf.
 For 3.3.2 the directions of the rays your integrator casts from the floor are kept, and
 which GP of the pool each pixel used.
 """
@@ -71,7 +72,10 @@ class KitGP:
     def compute_integral_BMC(self):
         self.used.append(self.index)
         channels = np.zeros(3)
-        for w, value in zip(self.weights, self.samples_val):
+        for w, value in zip(self.weights, self.samples_val or ()):
+            if not hasattr(value, "r") and not isinstance(value, (int, float)):
+                raise TypeError(f"the GP's values (add_sample_val) hold {value!r}, where "
+                                "RGBColors are needed (a stub's pass returns None)")
             channels += w * np.array(_channels(value))
         return self.common.RGBColor(*channels)
 
@@ -256,10 +260,10 @@ def _cmcis_furnace(rendered, draw, out):
     common, _, integrators = practice1_render.course_modules()
     filename = str(out / "cmcis")
     cmc = integrators.CMCIntegrator
-    if "pdf" in inspect.signature(cmc).parameters:
-        integrator = cmc(scenes.N_SAMPLES, filename, pdf=common.CosinePDF(1))
-    elif hasattr(integrators, "CMCISIntegrator"):
+    if hasattr(integrators, "CMCISIntegrator"):
         integrator = integrators.CMCISIntegrator(scenes.N_SAMPLES, filename)
+    elif "pdf" in inspect.signature(cmc).parameters:
+        integrator = cmc(scenes.N_SAMPLES, filename, pdf=common.CosinePDF(1))
     else:
         raise AttributeError("PyRT_Integrators.py has no classic Monte Carlo with "
                              "importance sampling: neither CMCIntegrator(n, filename_, "

@@ -21,6 +21,7 @@ pi) cos(theta_j) of the uniform BMC integrator, the furnace's pixel is c (rho / 
 w_j cos(theta_j), whatever the rotation about the normal; with BMC IS's Y_j = c rho / pi
 it is c (rho / pi) sum w_j; classic Monte Carlo with cosine sampling gives c rho exactly.
 """
+import functools
 import math
 import random as random_module
 from typing import NamedTuple, Tuple
@@ -105,8 +106,14 @@ def inverse_q(positions, noise=GP_NOISE):
     return np.linalg.inv(q)
 
 
+@functools.lru_cache(maxsize=None)
+def _legendre(nodes):
+    """Gauss-Legendre's nodes and weights on [-1, 1] (an eigenvalue problem: made once)."""
+    return np.polynomial.legendre.leggauss(nodes)
+
+
 def _gauss(low, high, nodes=QUADRATURE_NODES):
-    x, w = np.polynomial.legendre.leggauss(nodes)
+    x, w = _legendre(nodes)
     half = (high - low) / 2.0
     return low + half * (x + 1.0), half * w
 

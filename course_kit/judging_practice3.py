@@ -1,0 +1,114 @@
+"""The grader's judge of Practices 3 and 4, in the grader's own process, which never
+imports a student's code: Practice 1's trust boundary (course_kit/judging.py), with the
+checks of practice3_checks.py.
+
+For each step the step server runs the student's code in a process of its own on the
+inputs of a Trial, drawn at grading time (practice3_scenes.draw_inputs: the positions and
+noise of the GP's checks, the seed of the course's z estimate, the BMC sums' weights and
+colours, the sample sets of the GPs handed to the integrators with the weights computed
+here, the furnace's and the floor's places and colours). That process hands back data only
+(Q^-1, z, sums, images, the rays of 3.3.2), judged here by the students' own rules.
+
+One mistake costs one step: the integrators' steps (3.3, 3.3.2, 4.2) run with GPs of the
+kit whose weights this process computed and handed in as data, never with the student's
+GaussianProcess.py, whose mistakes cost 3.1 alone; 3.3.2 is judged on the rays cast and the
+GPs used, not on the pixels' values, which are 3.3's; 4.1 needs only the classic Monte
+Carlo integrator (Practice 2's) with cosine sampling. The framework's GaussianProcess.py
+and PyRT's machinery of z (pyrt/gp_*.py) are not in the working copy.
+"""
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+import course_kit.handback
+import course_kit.handout
+from course_kit.judging import NoData, _as_dict
+
+sys.path.insert(0, str(course_kit.handout.CHECKS))
+import practice3_checks as checks  # noqa: E402  (found through the line above)
+import practice3_render as render  # noqa: E402
+import practice3_scenes as scenes  # noqa: E402
+
+RENDER = "practice3_render"  # the step process's render module
+DRAWN_SIZES = tuple(range(scenes.SIZE - 2, scenes.SIZE + 3))
+
+
+@dataclass(frozen=True)
+class Trial:
+    """What a grading asks of the student's code: the Draw handed to the step's process
+    (what is expected follows from it)."""
+
+    draw: scenes.Draw
+
+
+def drawn_trial(random, folder=None):
+    """A Trial drawn with random (a random.Random) at grading time, at a size of
+    DRAWN_SIZES; folder: unused (the closed forms need no renders)."""
+    return Trial(scenes.draw_inputs(random, random.choice(DRAWN_SIZES)))
+
+
+def draw_record(draw):
+    """What the grader's record keeps of a draw."""
+    return {"size": draw.size, "seed": draw.seed, "noise": draw.noise,
+            "positions": [list(p) for p in draw.positions],
+            "sums": [len(case.weights) for case in draw.sums],
+            "pool": len(draw.pool), "n_samples": draw.n_samples,
+            "furnace": draw.furnace._asdict(), "floor": draw.floor._asdict()}
+
+
+def expected_arrays(name, draw):
+    """{array key: (dtype, shape)} that the check `name` may hand back at draw."""
+    float64 = np.dtype(np.float64)
+    n = len(draw.positions)
+    if name == "inv_q":
+        return {"inv_q": (float64, (n, n))}
+    if name == "z":
+        return {"z_one": (float64, (n,)), "z_cos": (float64, (n,))}
+    if name == "bmc_sum":
+        return {"sums": (float64, (len(draw.sums), 3))}
+    if name == "workbench":
+        return {"estimates": (float64, (len(draw.pool),))}
+    image = {"image": (float64, (draw.size, draw.size, 3))}
+    if name == "bmc_pool":
+        image.update(directions=(float64, (draw.size, draw.size, draw.n_samples, 3)),
+                     chosen=(float64, (draw.size, draw.size)))
+    return image
+
+
+def rendered_from(name, arrays, texts):
+    """A Rendered made of what course_kit.handback read."""
+    return render.Rendered(name, arrays, texts["error"], texts["first_color"],
+                           texts["not_bool"])
+
+
+def judge_step(step, trial, server, workdir, scratch, limits):
+    """(the step's checks as dicts, the refusals, the limits not set, why there is no
+    result or "", what the step printed) of step on the working copy workdir."""
+    names = checks.STEPS[step]
+    task = {"kind": "collect", "names": list(names), "draw": trial.draw, "traced": False,
+            "render": RENDER}
+    path, why, output = server.run_step(workdir, scratch, step, task, limits)
+    try:
+        if path is None:
+            raise NoData(why, output)
+        try:
+            rendered, meta = course_kit.handback.read(path, names, trial.draw, rendered_from,
+                                                      expected_arrays)
+        except course_kit.handback.Malformed as error:
+            raise NoData(f"refused: the step's process {error}", output) from None
+    except NoData as error:
+        return [], [], [], error.why, error.output
+    results = []
+    for one in rendered:
+        missing = set(expected_arrays(one.name, trial.draw)) - set(one.arrays)
+        if one.error is None and one.first_color is None and missing:
+            check = checks.new_check(one.name).fail(
+                "refused: the step's process handed back no " + ", ".join(sorted(missing)))
+        else:
+            check = checks.judge_rendered(one, trial.draw,
+                                          Path(scratch) / "checks" / one.name)
+        results.append(dict(_as_dict(check, step, Path(scratch) / "images"),
+                            framework_story=""))
+    return results, meta.get("refused", []), meta.get("limits_not_set", []), "", output
