@@ -139,18 +139,17 @@ def write(folder, variant):
 GP, INTEGRATORS = "GaussianProcess.py", "PyRT_Integrators.py"
 HOSTILE_READ = '''
 
-try:  # the framework's GaussianProcess.py, found beside the kit's modules, run here
+try:  # the framework's GaussianProcess.py, found above the kit's modules, run here
     import pathlib as _pathlib, sys as _sys
-    for _module in list(_sys.modules.values()):
-        _file = getattr(_module, "__file__", None) or ""
-        if "course_kit" in _file:
-            _repo = _pathlib.Path(_file).resolve().parents[2]
-            _sys.path.insert(0, str(_repo))
-            exec(compile(open(_repo / "GaussianProcess.py").read(), "GP", "exec"),
-                 globals())
-            break
+    _found = [_parent for _module in list(_sys.modules.values())
+              if "course_kit" in (getattr(_module, "__file__", None) or "")
+              for _parent in _pathlib.Path(_module.__file__).resolve().parents
+              if (_parent / "GaussianProcess.py").is_file()
+              and (_parent / "course_kit").is_dir()]
+    _sys.path.insert(0, str(_found[0]))
+    exec(compile(open(_found[0] / "GaussianProcess.py").read(), "GP", "exec"), globals())
 except Exception as _error:
-    print("could not read the framework's GaussianProcess.py:", _error)
+    print("could not read the framework's GaussianProcess.py:", repr(_error))
 '''
 FIXTURES = (
     Fixture("right", ("p through p_func.eval", "one GP or a list", "pdf= on CMCIntegrator"),
