@@ -224,8 +224,8 @@ def _exact_reason(name, image, expected, exact_wrong, draw):
     count = int(pixels.sum())
     y, x = (int(v) for v in np.argwhere(pixels)[0])
     where = (f"{count} pixels whose answer is exact differ (the first at x = {x}, "
-             f"y = {y}: yours {tuple(np.round(image[y, x], 6))}, expected "
-             f"{tuple(np.round(expected.value[y, x], 6))})")
+             f"y = {y}: yours {_rgb(image[y, x])}, expected "
+             f"{_rgb(expected.value[y, x])})")
     if name == "furnace" and np.allclose(image[pixels], 0.0):
         return ("a camera ray that hits nothing sees black, not the environment map "
                 "(scene.env_map.getValue(ray.d)): " + where)
@@ -235,6 +235,10 @@ def _exact_reason(name, image, expected, exact_wrong, draw):
             return ("the light of the object a camera ray hits is added (its emission): "
                     "the course's algorithm adds only what the sample rays gather: " + where)
     return where
+
+
+def _rgb(pixel):
+    return tuple(round(float(value), 6) for value in pixel)
 
 
 def _estimate_reason(name, judged, draw):

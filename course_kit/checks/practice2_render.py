@@ -115,13 +115,13 @@ def _curve(rendered, draw):
     random.seed(draw.seed)
     errors = []
     for ns in scenes.CURVE_NS:
-        total = 0.0
+        error_sum = 0.0
         for _ in range(scenes.CURVE_ESTIMATES):
             sample_set, sample_prob = common.sample_set_hemisphere(ns, pdf)
             values = bench.collect_samples(functions, sample_set)
-            total += abs(_number(rendered, bench.compute_estimate_cmc(sample_prob, values))
+            error_sum += abs(_number(rendered, bench.compute_estimate_cmc(sample_prob, values))
                          - math.pi)
-        errors.append(total / scenes.CURVE_ESTIMATES)
+        errors.append(error_sum / scenes.CURVE_ESTIMATES)
     rendered.arrays["curve"] = np.array(errors, dtype=np.float64)
 
 
@@ -178,12 +178,17 @@ def _render(rendered, draw, out):
 
 def render_loop_image(draw, out, size=8, n_samples=4):
     """The furnace rendered small through the student's own render() (Assignment 2.4's
-    images come out of it): the linear image."""
-    _, _, integrators = course_modules()
+    images come out of it): the linear image, or None when compute_color gives no colour
+    yet (Assignment 2.3 comes first)."""
+    common, _, integrators = course_modules()
     small = draw._replace(size=size)
     scene = scene_of("furnace", small, out)
     integrator = integrators.CMCIntegrator(n_samples, str(out / "render_loop"))
     integrator.add_scene(scene)
+    color = integrator.compute_color(common.Ray(common.Vector3D(0.0, 0.0, 0.0),
+                                                scene.camera.get_direction(0, 0)))
+    if not all(hasattr(color, channel) for channel in "rgb"):
+        return None
     integrator.render()
     return np.array(scene.rendered_image, dtype=float)
 
