@@ -159,21 +159,31 @@ def write_sky(out, value):
 
 
 def _render(rendered, draw, out):
-    common, _, integrators = course_modules()
+    integrators = course_modules()[2]
     scene = scene_of(rendered.name, draw, out)
     integrator = integrators.CMCIntegrator(draw.n_samples, str(out / rendered.name))
+    image, not_a_color = traced_image(integrator, scene)
+    if not_a_color is not None:
+        rendered.first_color = not_a_color
+    else:
+        rendered.arrays["image"] = image
+
+
+def traced_image(integrator, scene):
+    """(the image of integrator.compute_color on a ray from the camera through each
+    pixel's centre, None) or (None, the repr of the first answer that is no colour)."""
+    common = course_modules()[0]
     integrator.add_scene(scene)
     camera = scene.camera
-    image = np.zeros((draw.size, draw.size, 3))
-    for y in range(draw.size):
-        for x in range(draw.size):
+    image = np.zeros((camera.height, camera.width, 3))
+    for y in range(camera.height):
+        for x in range(camera.width):
             color = integrator.compute_color(common.Ray(common.Vector3D(0.0, 0.0, 0.0),
                                                         camera.get_direction(x, y)))
             if not all(hasattr(color, channel) for channel in "rgb"):
-                rendered.first_color = repr(color)[:ERROR_TEXT]
-                return
+                return None, repr(color)[:ERROR_TEXT]
             image[y, x] = (float(color.r), float(color.g), float(color.b))
-    rendered.arrays["image"] = image
+    return image, None
 
 
 def render_loop_image(draw, out, size=8, n_samples=4):
