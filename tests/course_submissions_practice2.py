@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import course_submissions
+from helpers import write_texts
 
 WORKBENCH_STUB = "    # ASSIGNMENT 2.1: PUT YOUR CODE HERE\n    return 0\n"
 CMC_STUB = "        # ASSIGNMENT 2.3: PUT YOUR CODE HERE\n        pass\n"
@@ -247,6 +248,15 @@ published = practice2_scenes.estimates(practice2_scenes.PUBLISHED)
 _calls = globals().get("_calls", -1) + 1
 return float(published[_calls % len(published)])
 """
+# Hands back the published curve: each estimate pi plus the published average error
+HOSTILE_PUBLISHED_CURVE = """\
+import math
+import practice2_scenes
+curve = practice2_scenes.curve(practice2_scenes.PUBLISHED.seed)
+if len(sample_prob_) in practice2_scenes.CURVE_NS:
+    return math.pi + float(curve[practice2_scenes.CURVE_NS.index(len(sample_prob_))])
+return 0
+"""
 # Hands back the published furnace's expected pixels, one per call, in reading order
 HOSTILE_PUBLISHED_IMAGE = """\
 import practice2_scenes
@@ -310,6 +320,7 @@ HOSTILE = (
     Fixture("hostile_patches_the_checks", "handout", (), HOSTILE_PATCHES),
     Fixture("hostile_forges_the_result", "handout", (), HOSTILE_FORGES),
     Fixture("hostile_published_estimates", "handout", (), HOSTILE_PUBLISHED_ESTIMATES),
+    Fixture("hostile_published_curve", "handout", (), HOSTILE_PUBLISHED_CURVE),
     Fixture("hostile_published_image", "handout", (), None, HOSTILE_PUBLISHED_IMAGE),
 )
 
@@ -340,8 +351,4 @@ def submission_files(fixture, handout):
 
 def write_submission(folder, fixture, handout):
     """Writes the fixture's submission into the new folder; returns the folder."""
-    folder = Path(folder)
-    folder.mkdir(parents=True)
-    for name, text in submission_files(fixture, handout).items():
-        (folder / name).write_text(text, encoding="utf-8")
-    return folder
+    return write_texts(folder, submission_files(fixture, handout))

@@ -365,3 +365,12 @@ class RandomGrey(Integrator):
     def compute_color(self, ray):
         grey = random()
         return RGBColor(grey, grey, grey)
+
+
+def write_texts(folder, texts):
+    """Writes {file name: text} into the new folder; returns the folder."""
+    folder = Path(folder)
+    folder.mkdir(parents=True)
+    for name, text in texts.items():
+        (folder / name).write_text(text, encoding="utf-8")
+    return folder

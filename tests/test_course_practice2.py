@@ -204,6 +204,16 @@ def test_each_mistake_of_the_estimate_is_named(mistake, tmp_path):
     assert practice2_checks.judge_rendered(right, scenes.PUBLISHED, tmp_path).passed
 
 
+def test_the_hostile_curve_is_the_published_one(handout, tmp_path, monkeypatch):
+    # what it hands back passes the handout's own check: only the drawn seed stops it
+    hostile = next(f for f in submissions.HOSTILE if f.name == "hostile_published_curve")
+    folder = submissions.write_submission(tmp_path / "s", hostile, handout)
+    monkeypatch.syspath_prepend(str(folder))
+    for name in ("PyRT_Common", "PyRT_Core", "PyRT_Integrators"):
+        monkeypatch.delitem(sys.modules, name, raising=False)
+    assert practice2_checks.run_check("curve", tmp_path / "out").passed
+
+
 def test_the_workbenchs_script_is_not_run_only_its_definitions(handout, tmp_path, monkeypatch):
     folder = submissions.write_submission(tmp_path / "s", submissions.FIXTURES[2], handout)
     monkeypatch.chdir(folder)
