@@ -21,30 +21,22 @@ WORKBENCH = "AppWorkbench.py"
 
 @dataclass(frozen=True)
 class Practice:
-    """One practice of the course: its number and title; the course modules its handout
-    holds (and students hand in); its graded steps, {step: title}, in order; the
-    optional steps its checks only run; the checks' files (course_kit/checks/<name> goes to
-    tests/<name> in the handout) and expected data (course_kit/checks/expected/<name>);
+    """One practice of the course: its number; the course modules its handout holds (and
+    students hand in); its graded steps, {step: title}, in order (optional steps have
+    checks in the handout but no points); the checks' files (course_kit/checks/<name> goes
+    to tests/<name> in the handout) and expected data (course_kit/checks/expected/<name>);
     the packages its handout installs; the check module that runs the student's code in a
-    step's process (render) and the modules it needs loaded before it (render_needs);
-    and the module of the grader's judge."""
+    step's process (render: course_kit/isolation.py loads it, with what it imports, before
+    any step); and the module of the grader's judge."""
 
     number: int
-    title: str
     modules: Tuple[str, ...]
     steps: Dict[str, str]
-    optional_steps: Tuple[str, ...]
     check_files: Tuple[str, ...]
     expected: Tuple[str, ...]
     packages: Tuple[str, ...]
     render: str
-    render_needs: Tuple[str, ...]
     judge: str
-
-    def first_practice_of(self, step):
-        """Whether a solution block of step (e.g. "2.3", "1.1-1.2") belongs to this
-        practice or a later one, so that the handout has its stub."""
-        return practice_of(step) >= self.number
 
 
 def practice_of(step):
@@ -54,7 +46,7 @@ def practice_of(step):
 
 PRACTICES = {
     1: Practice(
-        number=1, title="Practice 1: ray tracing",
+        number=1,
         modules=FRAMEWORK_MODULES,
         steps={
             "1.1": "Assignment 1.1: the render loop (Lazy integrator)",
@@ -62,27 +54,24 @@ PRACTICES = {
             "1.3": "Assignment 1.3: the Depth and Normal integrators",
             "1.4": "Assignment 1.4: the Phong integrator",
         },
-        optional_steps=(),
         check_files=("practice1_checks.py", "practice1_render.py", "test_practice1.py"),
         expected=("practice1.npz",),
         packages=("numpy", "opencv-python-headless", "matplotlib", "pytest"),
-        render="practice1_render", render_needs=(), judge="course_kit.judging"),
+        render="practice1_render", judge="course_kit.judging"),
     2: Practice(
-        number=2, title="Practice 2: Monte Carlo",
+        number=2,
         modules=FRAMEWORK_MODULES + (WORKBENCH,),
         steps={
             "2.1": "Assignment 2.1: the classic Monte Carlo estimate (the workbench)",
             "2.3": "Assignment 2.3: the classic Monte Carlo integrator",
         },
-        optional_steps=("2.2", "2.4"),
         # Practice 1's checks lend their verdicts, images and error reports
         check_files=("monte_carlo_check.py", "practice1_checks.py", "practice1_render.py",
                      "practice2_scenes.py", "practice2_checks.py", "practice2_render.py",
                      "test_practice2.py"),
         expected=(),
         packages=("numpy", "opencv-python-headless", "matplotlib", "tqdm", "pytest"),
-        render="practice2_render", render_needs=("practice2_scenes",),
-        judge="course_kit.judging_practice2"),
+        render="practice2_render", judge="course_kit.judging_practice2"),
 }
 
 

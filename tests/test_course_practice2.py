@@ -94,7 +94,8 @@ def test_no_line_of_practice_2s_solution_is_left_in_its_handout(handout):
     assert len(distinctive) >= 8
     for name, content in files_of(handout).items():
         if name.endswith(".py"):
-            assert not distinctive & {line.strip() for line in content.decode().splitlines()}, name
+            lines = {line.strip() for line in content.decode().splitlines()}
+            assert not distinctive & lines, name
 
 
 def test_the_command_line_writes_practice_2s_handout_and_names_the_practices(tmp_path, capsys):
