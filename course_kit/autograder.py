@@ -38,8 +38,9 @@ ROOT_VARIABLE, DEFAULT_ROOT = "AUTOGRADER_ROOT", "/autograder"
 SUBMISSION_NAME = "submission"
 # The files of the kit, by pattern from the repository's folder
 KIT_PATTERNS = ("PyRT_*.py", "AppRenderer.py", "AppWorkbench.py", "pyrt/**/*.py",
-                "course_kit/**/*.py", "course_kit/**/*.toml", "course_kit/**/*.npz", "requirements.txt",
-                "requirements-dev.txt", ".vscode/*.json", "references/figure*.png")
+                "course_kit/**/*.py", "course_kit/**/*.toml", "course_kit/**/*.npz",
+                "requirements.txt", "requirements-dev.txt", ".vscode/*.json",
+                "references/figure*.png")
 # Every file of the zip gets this date, so that the same kit makes the same bytes
 ZIP_DATE = (2020, 1, 1, 0, 0, 0)
 # The visibilities of the results of a grader that failed, whose settings may be what

@@ -4,10 +4,11 @@ RESULTS` (Practice 1 by default; course_kit/practices.py lists the practices).
 Every entry of SUBMISSIONS (a folder or a .zip) is one submission: the course modules it
 holds (PyRT_Common.py, PyRT_Core.py, PyRT_Integrators.py, AppRenderer.py, and Practice 2's
 AppWorkbench.py, wherever they lie in it; the shallowest of each name counts) are copied
-over a fresh copy of the practice's handout without its checks. Each assignment step runs the student's code there, on
-inputs drawn for this grading, in a process of its own (course_kit/isolation.py) with
-limits of time, memory and output, isolated as course_kit/sandbox.py chooses (bubblewrap's
-sandbox, an unprivileged user, or the process alone); that process hands back data only,
+over a fresh copy of the practice's handout without its checks. Each assignment step
+runs the student's code there, on inputs drawn for this grading, in a process of its own
+(course_kit/isolation.py) with limits of time, memory and output, isolated as
+course_kit/sandbox.py chooses (bubblewrap's sandbox, an unprivileged user, or the process
+alone); that process hands back data only,
 which this process judges (the practice's judge: course_kit/judging.py for Practice 1,
 course_kit/judging_practice2.py for Practice 2) with the students' own rules
 (course_kit/checks/practice<N>_checks.py). The submissions themselves are only read.

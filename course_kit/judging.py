@@ -150,7 +150,7 @@ def judge_step(step, trial, server, workdir, scratch, limits):
         if check.story_pixel:
             framework_story = _tell_story(check, step, trial, server, workdir, scratch,
                                           limits)
-        results.append(dict(_as_dict(check, step, Path(scratch) / "images"),
+        results.append(dict(check_record(check, step, Path(scratch) / "images"),
                             framework_story=framework_story))
     return results, meta.get("refused", []), meta.get("limits_not_set", []), "", output
 
@@ -180,7 +180,7 @@ def _tell_story(check, step, trial, server, workdir, scratch, limits):
     return trial.story(check.name, *check.story_pixel) if check.story else ""
 
 
-def _as_dict(check, step, images):
+def check_record(check, step, images):
     """check as the grader's record keeps it, its PNGs copied into images/ as
     <step>_<check>_<kind>.png."""
     kept = {}

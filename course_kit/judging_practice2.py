@@ -19,14 +19,15 @@ import numpy as np
 
 import course_kit.handback
 import course_kit.handout
-from course_kit.judging import NoData, _as_dict
+from course_kit.practices import PRACTICES
+from course_kit.judging import NoData, check_record
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice2_checks as checks  # noqa: E402  (found through the line above)
 import practice2_render as render  # noqa: E402
 import practice2_scenes as scenes  # noqa: E402
 
-RENDER = "practice2_render"  # the step process's render module
+RENDER = PRACTICES[2].render  # the step process's render module
 DRAWN_SIZES = tuple(range(scenes.SIZE - 4, scenes.SIZE + 5))
 
 
@@ -87,6 +88,6 @@ def judge_step(step, trial, server, workdir, scratch, limits):
     results = []
     for one in rendered:
         check = checks.judge_rendered(one, trial.draw, Path(scratch) / "checks" / one.name)
-        results.append(dict(_as_dict(check, step, Path(scratch) / "images"),
+        results.append(dict(check_record(check, step, Path(scratch) / "images"),
                             framework_story=""))
     return results, meta.get("refused", []), meta.get("limits_not_set", []), "", output

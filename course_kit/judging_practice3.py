@@ -24,7 +24,7 @@ import numpy as np
 
 import course_kit.handback
 import course_kit.handout
-from course_kit.judging import NoData, _as_dict
+from course_kit.judging import NoData, check_record
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice3_checks as checks  # noqa: E402  (found through the line above)
@@ -109,6 +109,6 @@ def judge_step(step, trial, server, workdir, scratch, limits):
         else:
             check = checks.judge_rendered(one, trial.draw,
                                           Path(scratch) / "checks" / one.name)
-        results.append(dict(_as_dict(check, step, Path(scratch) / "images"),
+        results.append(dict(check_record(check, step, Path(scratch) / "images"),
                             framework_story=""))
     return results, meta.get("refused", []), meta.get("limits_not_set", []), "", output

@@ -22,30 +22,22 @@ GAUSSIAN_PROCESS = "GaussianProcess.py"  # Practice 3's module, beside the workb
 
 @dataclass(frozen=True)
 class Practice:
-    """One practice of the course: its number and title; the course modules its handout
-    holds (and students hand in); its graded steps, {step: title}, in order; the
-    optional steps its checks only run; the checks' files (course_kit/checks/<name> goes to
-    tests/<name> in the handout) and expected data (course_kit/checks/expected/<name>);
+    """One practice of the course: its number; the course modules its handout holds (and
+    students hand in); its graded steps, {step: title}, in order (optional steps have
+    checks in the handout but no points); the checks' files (course_kit/checks/<name> goes
+    to tests/<name> in the handout) and expected data (course_kit/checks/expected/<name>);
     the packages its handout installs; the check module that runs the student's code in a
-    step's process (render) and the modules it needs loaded before it (render_needs);
-    and the module of the grader's judge."""
+    step's process (render: course_kit/isolation.py loads it, with what it imports, before
+    any step); and the module of the grader's judge."""
 
     number: int
-    title: str
     modules: Tuple[str, ...]
     steps: Dict[str, str]
-    optional_steps: Tuple[str, ...]
     check_files: Tuple[str, ...]
     expected: Tuple[str, ...]
     packages: Tuple[str, ...]
     render: str
-    render_needs: Tuple[str, ...]
     judge: str
-
-    def first_practice_of(self, step):
-        """Whether a solution block of step (e.g. "2.3", "1.1-1.2") belongs to this
-        practice or a later one, so that the handout has its stub."""
-        return practice_of(step) >= self.number
 
 
 def practice_of(step):
@@ -57,11 +49,10 @@ def practice_of(step):
 BAYESIAN_CHECK_FILES = ("monte_carlo_check.py", "practice1_checks.py", "practice1_render.py",
                         "practice2_scenes.py", "practice2_checks.py", "practice2_render.py",
                         "practice3_scenes.py", "practice3_checks.py", "practice3_render.py")
-BAYESIAN_RENDER_NEEDS = ("practice2_scenes", "practice2_render", "practice3_scenes")
 
 PRACTICES = {
     1: Practice(
-        number=1, title="Practice 1: ray tracing",
+        number=1,
         modules=FRAMEWORK_MODULES,
         steps={
             "1.1": "Assignment 1.1: the render loop (Lazy integrator)",
@@ -69,29 +60,26 @@ PRACTICES = {
             "1.3": "Assignment 1.3: the Depth and Normal integrators",
             "1.4": "Assignment 1.4: the Phong integrator",
         },
-        optional_steps=(),
         check_files=("practice1_checks.py", "practice1_render.py", "test_practice1.py"),
         expected=("practice1.npz",),
         packages=("numpy", "opencv-python-headless", "matplotlib", "pytest"),
-        render="practice1_render", render_needs=(), judge="course_kit.judging"),
+        render="practice1_render", judge="course_kit.judging"),
     2: Practice(
-        number=2, title="Practice 2: Monte Carlo",
+        number=2,
         modules=FRAMEWORK_MODULES + (WORKBENCH,),
         steps={
             "2.1": "Assignment 2.1: the classic Monte Carlo estimate (the workbench)",
             "2.3": "Assignment 2.3: the classic Monte Carlo integrator",
         },
-        optional_steps=("2.2", "2.4"),
         # Practice 1's checks lend their verdicts, images and error reports
         check_files=("monte_carlo_check.py", "practice1_checks.py", "practice1_render.py",
                      "practice2_scenes.py", "practice2_checks.py", "practice2_render.py",
                      "test_practice2.py"),
         expected=(),
         packages=("numpy", "opencv-python-headless", "matplotlib", "tqdm", "pytest"),
-        render="practice2_render", render_needs=("practice2_scenes",),
-        judge="course_kit.judging_practice2"),
+        render="practice2_render", judge="course_kit.judging_practice2"),
     3: Practice(
-        number=3, title="Practice 3: Bayesian Monte Carlo",
+        number=3,
         modules=FRAMEWORK_MODULES + (WORKBENCH, GAUSSIAN_PROCESS),
         steps={
             "3.1": "Assignment 3.1: the Gaussian process (compute_inv_Q, compute_z, "
@@ -99,27 +87,25 @@ PRACTICES = {
             "3.3": "Assignment 3.3: the Bayesian Monte Carlo integrator",
             "3.3.2": "Assignment 3.3.2: a random rotation and a pool of GPs per hit",
         },
-        # the workbench's BMC: checked when it is the handout's compute_estimate_bmc, not
-        # graded (a course-style workbench is a script with no function to call)
-        optional_steps=("3.2",),
-        # Practices 1 and 2's checks lend their verdicts, images and scenes
+        # 3.2, the workbench's BMC, is optional: checked when it is the handout's
+        # compute_estimate_bmc, not graded (a course-style workbench is a script with no
+        # function to call). Practices 1 and 2's checks lend their verdicts, images and scenes
         check_files=BAYESIAN_CHECK_FILES + ("test_practice3.py",),
         expected=(),
         packages=("numpy", "opencv-python-headless", "matplotlib", "tqdm", "pytest"),
-        render="practice3_render", render_needs=BAYESIAN_RENDER_NEEDS,
+        render="practice3_render",
         judge="course_kit.judging_practice3"),
     4: Practice(
-        number=4, title="Practice 4: adding prior knowledge (importance sampling)",
+        number=4,
         modules=FRAMEWORK_MODULES + (WORKBENCH, GAUSSIAN_PROCESS),
         steps={
             "4.1": "Assignment 4.1: classic Monte Carlo with importance sampling",
             "4.2": "Assignment 4.2: Bayesian Monte Carlo with importance sampling",
         },
-        optional_steps=(),
         check_files=BAYESIAN_CHECK_FILES + ("test_practice4.py",),
         expected=(),
         packages=("numpy", "opencv-python-headless", "matplotlib", "tqdm", "pytest"),
-        render="practice3_render", render_needs=BAYESIAN_RENDER_NEEDS,
+        render="practice3_render",
         judge="course_kit.judging_practice3"),
 }
 

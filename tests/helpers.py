@@ -462,3 +462,12 @@ def with_map_and_emitter(size):
     scene = cornell_box_scene(0.75, 2, areaLS=True, width=size, height=size)
     scene.env_map = EnvironmentMap.from_texels(sky_map())
     return scene
+
+
+def write_texts(folder, texts):
+    """Writes {file name: text} into the new folder; returns the folder."""
+    folder = Path(folder)
+    folder.mkdir(parents=True)
+    for name, text in texts.items():
+        (folder / name).write_text(text, encoding="utf-8")
+    return folder

@@ -159,23 +159,21 @@ def _curve_pngs(folder, got, expected):
     import matplotlib.pyplot as plt
     from matplotlib.ticker import NullFormatter, StrMethodFormatter
     folder.mkdir(parents=True, exist_ok=True)
-    finite = [v for v in np.concatenate([got, expected]) if np.isfinite(v) and v > 0]
-    low, high = (min(finite) / 1.5, max(finite) * 1.5) if finite else (1e-3, 10.0)
+    finite = [v for v in np.concatenate([got, expected]) if np.isfinite(v)]
+    high = max(max(finite, default=1.0), 0.0) * 1.15 or 1.0
     paths = {}
     for kind, values in (("render", got), ("expected", expected)):
         figure, axes = plt.subplots(figsize=(3, 3), dpi=80)
-        axes.plot(scenes.CURVE_NS, np.where(np.isfinite(values) & (values > 0), values,
-                                            np.nan), marker="o")
+        axes.plot(scenes.CURVE_NS, np.where(np.isfinite(values), values, np.nan),
+                  marker="o")
         axes.set_xscale("log")
-        axes.set_yscale("log")
-        axes.set_ylim(low, high)
-        for axis in (axes.xaxis, axes.yaxis):  # plain numbers, no TeX
-            axis.set_major_formatter(StrMethodFormatter("{x:g}"))
-            axis.set_minor_formatter(NullFormatter())
+        axes.set_ylim(0.0, high)
+        axes.xaxis.set_major_formatter(StrMethodFormatter("{x:g}"))  # plain numbers
+        axes.xaxis.set_minor_formatter(NullFormatter())
         axes.set_xticks(scenes.CURVE_NS)
         axes.set_xlabel("N")
-        axes.set_title("average error", fontsize=9)
-        figure.subplots_adjust(left=0.22, bottom=0.16)
+        axes.set_title("average absolute error", fontsize=9)
+        figure.subplots_adjust(left=0.2, bottom=0.16)
         paths[kind] = folder / f"{kind}.png"
         figure.savefig(paths[kind])
         plt.close(figure)
@@ -192,6 +190,18 @@ def sums_of(image, expected, n_samples):
                                   expected.bound[c], n_samples) for c in range(3)]
 
 
+def judge_image(name, image, draw, delta=monte_carlo_check.FALSE_FAILURE):
+    """(the Expected of the image `name` at draw; where its exact pixels are wrong, per
+    channel; its Sums judged at the chance delta of failing a correct integrator)."""
+    expected = scenes.EXPECTED[name](draw)
+    relative, absolute = ((MAP_RELATIVE, MAP_ABSOLUTE) if name == "furnace"
+                          else (EXACT_RELATIVE, EXACT_ABSOLUTE))
+    exact_wrong = expected.exact[..., None] & ~close(image, expected.value, relative,
+                                                      absolute)
+    return expected, exact_wrong, monte_carlo_check.judge_sums(
+        sums_of(image, expected, draw.n_samples), delta)
+
+
 def _judge_image(check, rendered, draw, folder):
     if rendered.first_color is not None:
         return check.fail(f"compute_color returned {rendered.first_color}"
@@ -199,12 +209,7 @@ def _judge_image(check, rendered, draw, folder):
                              if rendered.first_color == "None" else "")
                           + ", where an RGBColor is needed")
     image = rendered.arrays["image"]
-    expected = scenes.EXPECTED[rendered.name](draw)
-    relative, absolute = ((MAP_RELATIVE, MAP_ABSOLUTE) if rendered.name == "furnace"
-                          else (EXACT_RELATIVE, EXACT_ABSOLUTE))
-    exact_wrong = expected.exact[..., None] & ~close(image, expected.value, relative,
-                                                      absolute)
-    judged = monte_carlo_check.judge_sums(sums_of(image, expected, draw.n_samples))
+    expected, exact_wrong, judged = judge_image(rendered.name, image, draw)
     failed_sums = [one for one in judged if not one.passed]
     wrong = exact_wrong.any(axis=2) | (expected.estimated & bool(failed_sums))
     check.images = practice1_checks.write_pngs(folder, image, expected.value, wrong)
@@ -224,8 +229,8 @@ def _exact_reason(name, image, expected, exact_wrong, draw):
     count = int(pixels.sum())
     y, x = (int(v) for v in np.argwhere(pixels)[0])
     where = (f"{count} pixels whose answer is exact differ (the first at x = {x}, "
-             f"y = {y}: yours {tuple(np.round(image[y, x], 6))}, expected "
-             f"{tuple(np.round(expected.value[y, x], 6))})")
+             f"y = {y}: yours {_rgb(image[y, x])}, expected "
+             f"{_rgb(expected.value[y, x])})")
     if name == "furnace" and np.allclose(image[pixels], 0.0):
         return ("a camera ray that hits nothing sees black, not the environment map "
                 "(scene.env_map.getValue(ray.d)): " + where)
@@ -235,6 +240,10 @@ def _exact_reason(name, image, expected, exact_wrong, draw):
             return ("the light of the object a camera ray hits is added (its emission): "
                     "the course's algorithm adds only what the sample rays gather: " + where)
     return where
+
+
+def _rgb(pixel):
+    return tuple(round(float(value), 6) for value in pixel)
 
 
 def _estimate_reason(name, judged, draw):

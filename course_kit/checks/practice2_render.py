@@ -115,13 +115,13 @@ def _curve(rendered, draw):
     random.seed(draw.seed)
     errors = []
     for ns in scenes.CURVE_NS:
-        total = 0.0
+        error_sum = 0.0
         for _ in range(scenes.CURVE_ESTIMATES):
             sample_set, sample_prob = common.sample_set_hemisphere(ns, pdf)
             values = bench.collect_samples(functions, sample_set)
-            total += abs(_number(rendered, bench.compute_estimate_cmc(sample_prob, values))
+            error_sum += abs(_number(rendered, bench.compute_estimate_cmc(sample_prob, values))
                          - math.pi)
-        errors.append(total / scenes.CURVE_ESTIMATES)
+        errors.append(error_sum / scenes.CURVE_ESTIMATES)
     rendered.arrays["curve"] = np.array(errors, dtype=np.float64)
 
 
@@ -159,31 +159,46 @@ def write_sky(out, value):
 
 
 def _render(rendered, draw, out):
-    common, _, integrators = course_modules()
+    integrators = course_modules()[2]
     scene = scene_of(rendered.name, draw, out)
     integrator = integrators.CMCIntegrator(draw.n_samples, str(out / rendered.name))
+    image, not_a_color = traced_image(integrator, scene)
+    if not_a_color is not None:
+        rendered.first_color = not_a_color
+    else:
+        rendered.arrays["image"] = image
+
+
+def traced_image(integrator, scene):
+    """(the image of integrator.compute_color on a ray from the camera through each
+    pixel's centre, None) or (None, the repr of the first answer that is no colour)."""
+    common = course_modules()[0]
     integrator.add_scene(scene)
     camera = scene.camera
-    image = np.zeros((draw.size, draw.size, 3))
-    for y in range(draw.size):
-        for x in range(draw.size):
+    image = np.zeros((camera.height, camera.width, 3))
+    for y in range(camera.height):
+        for x in range(camera.width):
             color = integrator.compute_color(common.Ray(common.Vector3D(0.0, 0.0, 0.0),
                                                         camera.get_direction(x, y)))
             if not all(hasattr(color, channel) for channel in "rgb"):
-                rendered.first_color = repr(color)[:ERROR_TEXT]
-                return
+                return None, repr(color)[:ERROR_TEXT]
             image[y, x] = (float(color.r), float(color.g), float(color.b))
-    rendered.arrays["image"] = image
+    return image, None
 
 
 def render_loop_image(draw, out, size=8, n_samples=4):
     """The furnace rendered small through the student's own render() (Assignment 2.4's
-    images come out of it): the linear image."""
-    _, _, integrators = course_modules()
+    images come out of it): the linear image, or None when compute_color gives no colour
+    yet (Assignment 2.3 comes first)."""
+    common, _, integrators = course_modules()
     small = draw._replace(size=size)
     scene = scene_of("furnace", small, out)
     integrator = integrators.CMCIntegrator(n_samples, str(out / "render_loop"))
     integrator.add_scene(scene)
+    color = integrator.compute_color(common.Ray(common.Vector3D(0.0, 0.0, 0.0),
+                                                scene.camera.get_direction(0, 0)))
+    if not all(hasattr(color, channel) for channel in "rgb"):
+        return None
     integrator.render()
     return np.array(scene.rendered_image, dtype=float)
 

@@ -94,7 +94,7 @@ def draw_inputs(random, size=SIZE):
     """A Draw made with random (a random.Random): sample sets of 5 to 60 samples from the
     uniform and cosine densities, the seed, and the scenes' places, sizes and colours."""
     sets = tuple(_sample_set(random, random.randint(5, 60), pdf, lobe)
-                 for pdf, lobe in ((0, 1), (0, 0), (0, 4), (1, 1), (1, 4), (4, 1)))
+                 for pdf, lobe in ((0, 1), (0, 2), (0, 4), (1, 2), (1, 4), (4, 1)))
 
     def colour(low, high):
         return tuple(round(random.uniform(low, high), 4) for _ in range(3))
@@ -148,11 +148,11 @@ def curve(seed, ns_vector=CURVE_NS, n_estimates=CURVE_ESTIMATES):
     for ns in ns_vector:
         total_error = 0.0
         for _ in range(n_estimates):
-            total = 0.0
+            f_over_p_sum = 0.0
             for _ in range(ns):
                 random.random()  # u1, the azimuth: the cosine does not depend on it
-                total += random.random() / density
-            total_error += abs(total / ns - math.pi)
+                f_over_p_sum += random.random() / density
+            total_error += abs(f_over_p_sum / ns - math.pi)
         errors.append(total_error / n_estimates)
     return np.array(errors)
 

@@ -67,6 +67,8 @@ def test_optional_2_4_render_loop_runs():
     except Exception as error:
         pytest.fail("Assignment 2.4 (optional): render() with the CMCIntegrator raised "
                     f"{type(error).__name__}: {error}", pytrace=False)
+    if image is None:
+        pytest.skip("Assignment 2.4 (optional) needs Assignment 2.3's compute_color first")
     if not np.all(np.isfinite(image)):
         pytest.fail("Assignment 2.4 (optional): the image that render() makes with the "
                     "CMCIntegrator has pixels that are not finite", pytrace=False)
