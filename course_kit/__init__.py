@@ -1,4 +1,4 @@
-"""The course kit of Practices 1 and 2, for teaching assistants: the students' handout made
+"""The course kit of Practices 1 to 4, for teaching assistants: the students' handout made
 from this framework, the grader of what they hand in and Gradescope's autograder.
 
     practices    what each practice hands out, grades and checks (practices.py)
@@ -6,7 +6,8 @@ from this framework, the grader of what they hand in and Gradescope's autograder
     grader       grades a folder of submissions (grader.py), each step's student code
                  in a process of its own (isolation.py, the step server) inside a sandbox
                  (sandbox.py), handing back data only (handback.py), judged in the
-                 grader's process (judging.py; Practice 2's: judging_practice2.py); and
+                 grader's process (judging.py; Practice 2's: judging_practice2.py; Practices
+                 3 and 4's: judging_practice3.py); and
                  writes the reports (feedback.py)
     autograder   Gradescope's zip and its run (autograder.py)
     references   the checks' expected images, stored and made at grading time

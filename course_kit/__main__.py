@@ -4,7 +4,7 @@
     python -m course_kit grade SUBMISSIONS --out RESULTS [--jobs N] [--force] [--config F]
                                             [--isolation MODE]
     python -m course_kit autograder ZIP     writes Gradescope's autograder zip [--config F]
-    (handout, grade and autograder take --practice N: 1, the default, or 2)
+    (handout, grade and autograder take --practice N: 1, the default, to 4)
     python -m course_kit expected           remakes the checks' expected images, on
                                             purpose only (course_kit/checks/expected/)
 
@@ -19,7 +19,7 @@ from course_kit.practices import PRACTICES
 
 def parse_args(argv):
     parser = argparse.ArgumentParser(
-        prog="python -m course_kit", description="The course kit of Practices 1 and 2: the "
+        prog="python -m course_kit", description="The course kit of Practices 1 to 4: the "
         "students' handout and the grader. See docs/course-kit.md.")
     commands = parser.add_subparsers(dest="command", required=True)
     handout_command = commands.add_parser("handout", help="write the students' base code into DIR")

@@ -37,7 +37,8 @@ import course_kit.sandbox
 ROOT_VARIABLE, DEFAULT_ROOT = "AUTOGRADER_ROOT", "/autograder"
 SUBMISSION_NAME = "submission"
 # The files of the kit, by pattern from the repository's folder
-KIT_PATTERNS = ("PyRT_*.py", "AppRenderer.py", "AppWorkbench.py", "pyrt/**/*.py",
+KIT_PATTERNS = ("PyRT_*.py", "AppRenderer.py", "AppWorkbench.py", "GaussianProcess.py",
+                "pyrt/**/*.py",
                 "course_kit/**/*.py", "course_kit/**/*.toml", "course_kit/**/*.npz",
                 "requirements.txt", "requirements-dev.txt", ".vscode/*.json",
                 "references/figure*.png")

@@ -104,7 +104,8 @@ def test_the_command_line_writes_practice_2s_handout_and_names_the_practices(tmp
     assert (tmp_path / "h" / "tests" / "test_practice2.py").exists()
     with pytest.raises(SystemExit):
         course_kit.__main__.main(["handout", "--practice", "5", str(tmp_path / "x")])
-    assert "invalid choice: 5 (choose from 1, 2)" in capsys.readouterr().err
+    choices = ", ".join(str(number) for number in course_kit.practices.PRACTICES)
+    assert f"invalid choice: 5 (choose from {choices})" in capsys.readouterr().err
 
 
 def run_students_checks(folder):
