@@ -240,8 +240,7 @@ def _furnace_check(check, rendered, draw, folder, factor, mistakes):
     sphere_wrong = pixels & sphere
     y, x = (int(v) for v in np.argwhere(pixels)[0])
     where = (f"{int(pixels.sum())} pixels differ (the first at x = {x}, y = {y}: yours "
-             f"{tuple(np.round(image[y, x], 6))}, expected "
-             f"{tuple(np.round(expected.value[y, x], 6))})")
+             f"{_rgb(image[y, x])}, expected {_rgb(expected.value[y, x])})")
     if not sphere_wrong.any():
         return check.fail("a camera ray that hits nothing sees the environment map "
                           "(scene.env_map.getValue(ray.d)): " + where)
@@ -253,6 +252,11 @@ def _furnace_check(check, rendered, draw, folder, factor, mistakes):
     mean = float(np.mean(ratio)) / factor if factor else float("nan")
     return check.fail(f"the sphere's pixels are {mean:.4g} times the expected light on "
                       f"average: {where}")
+
+
+def _rgb(pixel):
+    """A pixel's channels as a text of plain numbers."""
+    return "(" + ", ".join(f"{float(v):.6g}" for v in pixel) + ")"
 
 
 def _judge_bmc_furnace(check, rendered, draw, folder):
