@@ -37,6 +37,12 @@ HALF_PI = math.pi / 2
 FIRST_STEP = 1 / 8
 FINEST_STEP = 1 / 128
 TOLERANCE = 1e-9
+# symmetric_z takes, for each kernel and p, the largest step whose z agrees with that of
+# half the step to CALIBRATED (relative) at every polar angle of CALIBRATION_ANGLES: the
+# whole range, and angles ever closer to the pole and to the horizon
+CALIBRATED = 1e-13
+CALIBRATION_ANGLES = np.concatenate([np.linspace(0.0, HALF_PI, 129),
+                                     np.logspace(-12, -1, 23), HALF_PI - np.logspace(-12, -1, 23)])
 # psi on the whole ring: the trapezoidal rule (exact for trigonometric polynomials of lower
 # degree, spectrally accurate for smooth periodic integrands); on an arc: Gauss-Legendre
 RING_POINTS = 64
@@ -145,16 +151,34 @@ def polar_angles(positions: np.ndarray) -> np.ndarray:
     return np.arctan2(np.hypot(positions[:, 0], positions[:, 2]), positions[:, 1])
 
 
+def swept_z(kernel: RadialProfile, p: PolarProfile, theta: np.ndarray,
+            step: float) -> np.ndarray:
+    """z at samples of polar angles theta, for a kernel of the distance and a p symmetric
+    about +y (the module's docstring), by the tanh-sinh rule of the given step."""
+    total = np.zeros(len(theta))
+    for sweep in sweeps(theta, tanh_sinh(step)):
+        k = kernel(4 * np.sin(sweep.gamma / 2) ** 2)
+        total += (sweep.weights * k * ring_integral(p, sweep)).sum(axis=1)
+    return total
+
+
+@lru_cache(maxsize=64)
+def calibrated_step(kernel: RadialProfile, p: PolarProfile) -> float:
+    """The step of the tanh-sinh rule that gives this kernel's and p's z to CALIBRATED at
+    every angle of CALIBRATION_ANGLES (FINEST_STEP at most)."""
+    step, coarse = FIRST_STEP, swept_z(kernel, p, CALIBRATION_ANGLES, FIRST_STEP)
+    while step > FINEST_STEP:
+        fine = swept_z(kernel, p, CALIBRATION_ANGLES, step / 2)
+        if np.all(np.abs(coarse - fine) <= CALIBRATED * np.abs(fine)):
+            return step
+        step, coarse = step / 2, fine
+    return FINEST_STEP
+
+
 def symmetric_z(kernel: RadialProfile, p: PolarProfile, theta: np.ndarray) -> np.ndarray:
     """z at samples of polar angles theta, for a kernel of the distance and a p symmetric
-    about +y (the module's docstring), to rounding."""
-    def integrate(step):
-        total = np.zeros(len(theta))
-        for sweep in sweeps(theta, tanh_sinh(step)):
-            k = kernel(4 * np.sin(sweep.gamma / 2) ** 2)
-            total += (sweep.weights * k * ring_integral(p, sweep)).sum(axis=1)
-        return total
-    return converged(integrate)
+    about +y, to rounding, by the rule of the step calibrated for them."""
+    return swept_z(kernel, p, theta, calibrated_step(kernel, p))
 
 
 def general_z(cov_func, p_func, positions: np.ndarray) -> np.ndarray:
@@ -242,9 +266,10 @@ def symmetric_k_bar(kernel: RadialProfile, p: PolarProfile) -> float:
 
 
 def k_bar(cov_func, p_func) -> float:
-    """The double integral over the hemisphere of k(omega, omega') p(omega) p(omega'): for
-    any other kernel or p, z on a grid of directions (the tanh-sinh rule of step
-    GENERAL_THETA_STEP in theta, the trapezoidal rule of GENERAL_PHI_POINTS in phi), good to about 1e-7."""
+    """The double integral over the hemisphere of k(omega, omega') p(omega) p(omega'): to
+    rounding for a kernel of the distance and a symmetric p; for any other, from z on a
+    grid of directions (the tanh-sinh rule of step GENERAL_THETA_STEP in theta, the
+    trapezoidal rule of GENERAL_PHI_POINTS points in phi), good to about 1e-7."""
     kernel, p = radial_profile(cov_func), polar_profile(p_func)
     if kernel is not None and p is not None:
         return symmetric_k_bar(kernel, p)
