@@ -8,7 +8,8 @@ cos over the hemisphere (pi), with uniform sampling (MC) and cosine sampling (MC
 `--practice 3` for Assignment 3.2 (MC against BMC on the same integral), `--practice 4`
 for Practice 4 (MC, MC IS, BMC and BMC IS on the integral of cos^3 times cos, 2 pi/5).
 `python AppWorkbench.py --help` lists the options. The plot is saved as
-out/workbench_error.png next to this script and shown in a window when there is a screen.
+out/workbench_error.png (out/workbench_error_practice3.png, ...) next to this script and
+shown in a window when there is a screen.
 """
 import argparse
 import math
@@ -37,8 +38,10 @@ import random
 
 # out/ next to this script, wherever it is run from
 DIRECTORY = Path(__file__).resolve().parent / "out"
+# The plots: Practice 2's workbench_error.png, Practice 3's workbench_error_practice3.png
+# and workbench_weights_practice3.png, and so on
 FILENAME = "workbench_error.png"
-WEIGHTS_FILENAME = "workbench_weights.png"
+WEIGHTS_STEM = "workbench_weights"
 # --weights shows a GP of the number of samples closest to this (Practice 3's renders' 40)
 WEIGHTS_SAMPLES = 40
 
@@ -480,7 +483,7 @@ def parse_args(argv):
     parser.add_argument("--weights", action="store_true",
                         help="Practices 3 and 4: also plot the weights of one GP of the "
                              f"N closest to {WEIGHTS_SAMPLES} (visualize_sample_set), as "
-                             + WEIGHTS_FILENAME)
+                             f"{WEIGHTS_STEM}_practice<3 or 4>.png")
     parser.add_argument("--seed", type=int, default=0,
                         help="the seed of Python's random numbers (default 0)")
     parser.add_argument("--out", type=Path, default=DIRECTORY,
@@ -542,12 +545,14 @@ def main(argv=None) -> int:
         print(describe(method, sigma, results[:, m]))
     print(error_table(ns_vector, results, methods, sigmas, measured.believed))
 
-    figures = {FILENAME: plot_errors(ns_vector, results, methods, sigmas, integrand,
-                                     n_estimates, measured.believed, args.bmc_estimates)}
+    suffix = "" if args.practice == 2 else f"_practice{args.practice}"
+    figures = {FILENAME.replace(".png", suffix + ".png"): plot_errors(
+        ns_vector, results, methods, sigmas, integrand, n_estimates, measured.believed,
+        args.bmc_estimates)}
     if args.weights:
         bmc = [method for method in methods if method.is_bmc][-1]
         ns = int(ns_vector[np.argmin(np.abs(ns_vector - WEIGHTS_SAMPLES))])
-        figures[WEIGHTS_FILENAME] = plot_weights(bmc, ns)
+        figures[f"{WEIGHTS_STEM}{suffix}.png"] = plot_weights(bmc, ns)
     for name, figure in figures.items():
         path = args.out / name
         try:

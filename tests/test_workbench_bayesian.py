@@ -122,7 +122,8 @@ def test_each_practice_runs_headless_with_its_methods_and_beliefs(practice, labe
     assert f"{'N':>5}{columns}" in result.stdout.splitlines()
     assert "50 MC and 5 BMC estimates per number of samples in " in result.stdout
     assert "a belief, not a bound" in result.stdout
-    for name in ("workbench_error.png", "workbench_weights.png"):
+    for name in (f"workbench_error_practice{practice}.png",
+                 f"workbench_weights_practice{practice}.png"):
         assert plt.imread(tmp_path / "plots" / name).ndim == 3
 
 
