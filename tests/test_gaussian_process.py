@@ -271,6 +271,13 @@ def test_the_variance_falls_as_samples_are_added_and_never_goes_negative():
     assert variances[-1] >= 0.0
 
 
+def test_the_variance_with_a_p_of_ones_own_is_that_of_the_same_p_known_to_pyrt():
+    positions = [POLE, direction(0.8, 0.4)]
+    own = gp_of(positions, CosineOfMyOwn()).compute_variance_BMC()
+    assert own == pytest.approx(gp_of(positions, CosineLobe(1)).compute_variance_BMC(),
+                                rel=1e-7)
+
+
 def test_the_variance_with_the_course_z_comes_from_the_exact_z():
     random.seed(4)
     positions, _ = sample_set_hemisphere(5, UniformPDF())
