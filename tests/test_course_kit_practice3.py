@@ -190,7 +190,8 @@ def test_a_step_may_not_open_the_frameworks_gaussian_process(tmp_path):
 # ------------------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def graded(tmp_path_factory):
-    """{practice: {submission: record}} of FIXTURES and the untouched Practice 3 handout,
+    """{practice: {submission: record}} of FIXTURES and the untouched handouts of Practices 3
+    and 4,
     graded in processes of their own on inputs drawn with a seed."""
     if not SUPPORTED:
         pytest.skip(str(course_kit.isolation.unsupported()))
@@ -198,10 +199,11 @@ def graded(tmp_path_factory):
     folder = root / "submissions"
     for fixture in submissions.FIXTURES:
         submissions.write(folder / fixture.name, fixture.variant)
-    handout = course_kit.handout.write_handout(root / "handout", 3)
-    (folder / "untouched").mkdir()
-    for name in course_kit.handout.PRACTICES[3].modules:
-        shutil.copyfile(handout / name, folder / "untouched" / name)
+    for practice, name in ((3, "untouched"), (4, "untouched4")):
+        handout = course_kit.handout.write_handout(root / f"handout{practice}", practice)
+        (folder / name).mkdir()
+        for module in course_kit.handout.PRACTICES[practice].modules:
+            shutil.copyfile(handout / module, folder / name / module)
     return {practice: {record["submission"]: record for record in
                        course_kit.grader.grade_folder(
                            folder, root / f"results{practice}",
@@ -226,6 +228,12 @@ def test_each_submission_gets_the_verdict_it_deserves(graded, practice, fixture)
 @pytest.mark.parametrize("practice", [3, 4])
 def test_the_untouched_handout_gets_nothing(graded, practice):
     assert graded[practice]["untouched"]["total"] == 0
+
+
+def test_practice4s_handout_gets_nothing_for_practice_4_and_all_of_practice_3(graded):
+    assert graded[4]["untouched4"]["total"] == 0
+    record = graded[3]["untouched4"]  # Practice 3 finished, course-style, FRAMEWORK ONLY cut
+    assert record["total"] == record["max_total"], [step["reason"] for step in record["steps"]]
 
 
 def test_the_hostile_reading_is_refused_and_named(graded):
