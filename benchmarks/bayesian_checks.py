@@ -55,21 +55,13 @@ def z_passes(draw, z_one, z_cos, delta):
 
 
 def pool_passes(draw, case, draws):
-    floor = scenes.floor_pixels(draw)
-    count = int(floor.sum())
+    count = int(scenes.floor_pixels(draw).sum())
     chosen = [0 if case == POOL_CASES[2] else draws.randrange(scenes.POOL)
               for _ in range(count)]
     angle = draws.random() * 2 * math.pi
     angles = [angle if case == POOL_CASES[1] else draws.random() * 2 * math.pi
               for _ in range(count)]
-    directions = np.full((draw.size, draw.size, draw.n_samples, 3), np.nan)
-    picked = np.full((draw.size, draw.size), -1.0)
-    for k, (y, x) in enumerate(np.argwhere(floor)):
-        p = np.asarray(draw.pool[chosen[k]].positions)
-        c, s = math.cos(angles[k]), math.sin(angles[k])
-        directions[y, x] = np.stack([p[:, 0] * c + p[:, 2] * s, p[:, 1],
-                                     -p[:, 0] * s + p[:, 2] * c], axis=1)
-        picked[y, x] = chosen[k]
+    directions, picked = scenes.turned_sets(draw, chosen, angles)
     rendered = render.Rendered("bmc_pool")
     rendered.arrays.update(directions=directions, chosen=picked,
                            image=np.zeros((draw.size, draw.size, 3)))

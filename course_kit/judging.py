@@ -180,6 +180,42 @@ def _tell_story(check, step, trial, server, workdir, scratch, limits):
     return trial.story(check.name, *check.story_pixel) if check.story else ""
 
 
+def judge_data_step(checks, render_name, rendered_from, expected_arrays, step, trial,
+                    server, workdir, scratch, limits):
+    """judge_step of a practice whose checks judge data alone (Practices 2 to 4): the
+    checks of step (checks.STEPS[step]) collected by the step's process with its render
+    module render_name, read as expected_arrays(name, draw) says and made Rendered by
+    rendered_from, judged by checks.judge_rendered against the trial's draw. Returns what
+    judge_step returns; a check that hands back neither its arrays nor an error is
+    refused."""
+    names = checks.STEPS[step]
+    task = {"kind": "collect", "names": list(names), "draw": trial.draw, "traced": False,
+            "render": render_name}
+    path, why, output = server.run_step(workdir, scratch, step, task, limits)
+    try:
+        if path is None:
+            raise NoData(why, output)
+        try:
+            rendered, meta = course_kit.handback.read(path, names, trial.draw, rendered_from,
+                                                      expected_arrays)
+        except course_kit.handback.Malformed as error:
+            raise NoData(f"refused: the step's process {error}", output) from None
+    except NoData as error:
+        return [], [], [], error.why, error.output
+    results = []
+    for one in rendered:
+        missing = set(expected_arrays(one.name, trial.draw)) - set(one.arrays)
+        if one.error is None and one.first_color is None and missing:
+            check = checks.new_check(one.name).fail(
+                "refused: the step's process handed back no " + ", ".join(sorted(missing)))
+        else:
+            check = checks.judge_rendered(one, trial.draw,
+                                          Path(scratch) / "checks" / one.name)
+        results.append(dict(check_record(check, step, Path(scratch) / "images"),
+                            framework_story=""))
+    return results, meta.get("refused", []), meta.get("limits_not_set", []), "", output
+
+
 def check_record(check, step, images):
     """check as the grader's record keeps it, its PNGs copied into images/ as
     <step>_<check>_<kind>.png."""

@@ -13,14 +13,12 @@ themselves, and, drawn at grading time, nothing a submission can foresee.
 """
 import sys
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
-import course_kit.handback
 import course_kit.handout
 from course_kit.practices import PRACTICES
-from course_kit.judging import NoData, check_record
+from course_kit.judging import judge_data_step
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice2_checks as checks  # noqa: E402  (found through the line above)
@@ -71,23 +69,5 @@ def rendered_from(name, arrays, texts):
 def judge_step(step, trial, server, workdir, scratch, limits):
     """(the step's checks as dicts, the refusals, the limits not set, why there is no
     result or "", what the step printed) of step on the working copy workdir."""
-    names = checks.STEPS[step]
-    task = {"kind": "collect", "names": list(names), "draw": trial.draw, "traced": False,
-            "render": RENDER}
-    path, why, output = server.run_step(workdir, scratch, step, task, limits)
-    try:
-        if path is None:
-            raise NoData(why, output)
-        try:
-            rendered, meta = course_kit.handback.read(path, names, trial.draw, rendered_from,
-                                                      expected_arrays)
-        except course_kit.handback.Malformed as error:
-            raise NoData(f"refused: the step's process {error}", output) from None
-    except NoData as error:
-        return [], [], [], error.why, error.output
-    results = []
-    for one in rendered:
-        check = checks.judge_rendered(one, trial.draw, Path(scratch) / "checks" / one.name)
-        results.append(dict(check_record(check, step, Path(scratch) / "images"),
-                            framework_story=""))
-    return results, meta.get("refused", []), meta.get("limits_not_set", []), "", output
+    return judge_data_step(checks, RENDER, rendered_from, expected_arrays, step, trial,
+                           server, workdir, scratch, limits)

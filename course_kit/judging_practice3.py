@@ -18,13 +18,11 @@ and PyRT's machinery of z (pyrt/gp_*.py) are not in the working copy.
 """
 import sys
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
-import course_kit.handback
 import course_kit.handout
-from course_kit.judging import NoData, check_record
+from course_kit.judging import judge_data_step
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice3_checks as checks  # noqa: E402  (found through the line above)
@@ -86,29 +84,5 @@ def rendered_from(name, arrays, texts):
 def judge_step(step, trial, server, workdir, scratch, limits):
     """(the step's checks as dicts, the refusals, the limits not set, why there is no
     result or "", what the step printed) of step on the working copy workdir."""
-    names = checks.STEPS[step]
-    task = {"kind": "collect", "names": list(names), "draw": trial.draw, "traced": False,
-            "render": RENDER}
-    path, why, output = server.run_step(workdir, scratch, step, task, limits)
-    try:
-        if path is None:
-            raise NoData(why, output)
-        try:
-            rendered, meta = course_kit.handback.read(path, names, trial.draw, rendered_from,
-                                                      expected_arrays)
-        except course_kit.handback.Malformed as error:
-            raise NoData(f"refused: the step's process {error}", output) from None
-    except NoData as error:
-        return [], [], [], error.why, error.output
-    results = []
-    for one in rendered:
-        missing = set(expected_arrays(one.name, trial.draw)) - set(one.arrays)
-        if one.error is None and one.first_color is None and missing:
-            check = checks.new_check(one.name).fail(
-                "refused: the step's process handed back no " + ", ".join(sorted(missing)))
-        else:
-            check = checks.judge_rendered(one, trial.draw,
-                                          Path(scratch) / "checks" / one.name)
-        results.append(dict(check_record(check, step, Path(scratch) / "images"),
-                            framework_story=""))
-    return results, meta.get("refused", []), meta.get("limits_not_set", []), "", output
+    return judge_data_step(checks, RENDER, rendered_from, expected_arrays, step, trial,
+                           server, workdir, scratch, limits)

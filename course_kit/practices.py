@@ -66,7 +66,9 @@ PRACTICES = {
         render="practice1_render", judge="course_kit.judging"),
     2: Practice(
         number=2,
-        modules=FRAMEWORK_MODULES + (WORKBENCH,),
+        # the workbench imports GaussianProcess.py, handed out with Practice 3's stubs, as
+        # the base code carries the integrators of later practices as stubs
+        modules=FRAMEWORK_MODULES + (WORKBENCH, GAUSSIAN_PROCESS),
         steps={
             "2.1": "Assignment 2.1: the classic Monte Carlo estimate (the workbench)",
             "2.3": "Assignment 2.3: the classic Monte Carlo integrator",

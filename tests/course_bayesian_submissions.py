@@ -2,7 +2,8 @@
 students write": the course's base code (tests/data/course_base/2023-24) with Practice 1's
 answers (course_submissions.RIGHT_2023), the classic Monte Carlo integrator of 2.3, the
 Bayesian Monte Carlo integrator of 3.3 and 3.3.2, importance sampling for Practice 4, and a
-course-style GaussianProcess.py (tests/data/course_kit_practice3/). Each variant changes
+course-style GaussianProcess.py (tests/data/course_practice3/, with its three methods of
+3.1 filled in). Each variant changes
 the right code in one place, as a student's style or mistake does; FIXTURES gives the
 verdict a teaching assistant gives each, step by step.
 """
@@ -11,8 +12,7 @@ from pathlib import Path
 
 import course_submissions
 
-GP_FILE = Path(__file__).resolve().parent / "data" / "course_kit_practice3" / \
-    "GaussianProcess.py"
+GP_FILE = Path(__file__).resolve().parent / "data" / "course_practice3" / "GaussianProcess.py"
 CMC_STUB = "        # ASSIGNMENT 2.3: PUT YOUR CODE HERE\n        pass\n"
 BMC_STUB = "        # ASSIGNMENT 3: PUT YOUR CODE HERE\n        pass\n"
 CMC_INIT = ("    def __init__(self, n, filename_, experiment_name=''):\n"
@@ -155,19 +155,19 @@ FIXTURES = (
     Fixture("right", ("p through p_func.eval", "one GP or a list", "pdf= on CMCIntegrator"),
             Variant()),
     Fixture("right_p_number", ("p as a number, multiplied in", "a rotation per sample"),
-            Variant(((GP, "p = self.p_func.eval(sample_set_z[j])",
-                      "p = self.p_func if not isinstance(self.p_func, Function) else "
-                      "self.p_func.eval(sample_set_z[j])"),
+            Variant(((GP, "* self.p_func.eval(omega_j) /",
+                      "* (self.p_func.eval(omega_j) if isinstance(self.p_func, Function) "
+                      "else self.p_func) /"),
                      (INTEGRATORS, "rotate_around_y(alpha, omega)",
                       "rotate_around_y(2 * pi * np.random.rand(), omega)")))),
     Fixture("q_without_noise", ("Q without the noise",),
-            Variant(((GP, "                if i == j:\n                    Q[i, j] += self.noise ** 2\n",
-                       ""),)),
+            Variant(((GP, "        Q = Q + np.identity(n) * (self.noise ** 2)\n", ""),)),
             {"3.1": "no noise"}),
     Fixture("z_without_p", ("z without p",),
-            Variant(((GP, "* p / probab[j]", "/ probab[j]"),)), {"3.1": "leaves out p"}),
+            Variant(((GP, "* self.p_func.eval(omega_j) / probab[j]", "/ probab[j]"),)),
+            {"3.1": "leaves out p"}),
     Fixture("z_wrong_density", ("z by the wrong density",),
-            Variant(((GP, "* p / probab[j]", "* p * probab[j]"),)),
+            Variant(((GP, "/ probab[j]", "* probab[j]"),)),
             {"3.1": "multiplies by the density"}),
     Fixture("double_cosine", ("a double cosine in BMC",),
             Variant(((INTEGRATORS,
@@ -194,6 +194,6 @@ FIXTURES = (
                      (GP, "        res = BLACK\n", "        return BLACK\n"),
                      (GP, "                Q[i, j] = self.cov_func.eval(self.samples_pos[i], "
                           "self.samples_pos[j])\n", "                pass\n"),
-                     (GP, "            z_vec[i] = acc / ns_z\n", ""))),
+                     (GP, "            z_vec[i] = z / ns_z\n", ""))),
             {"3.1": ""}),
 )

@@ -143,18 +143,8 @@ def test_a_z_of_other_directions_passes_and_one_without_p_fails():
 
 
 def _pool_rendered(draw, chosen, angles):
-    """3.3.2's data of an integrator that used GP chosen[k] turned by angles[k] at the k-th
-    floor pixel."""
-    floor = scenes.floor_pixels(draw)
-    directions = np.full((draw.size, draw.size, draw.n_samples, 3), np.nan)
-    picked = np.full((draw.size, draw.size), -1.0)
-    for k, (y, x) in enumerate(np.argwhere(floor)):
-        p = np.asarray(draw.pool[chosen[k]].positions)
-        c, s = math.cos(angles[k]), math.sin(angles[k])
-        directions[y, x] = np.stack([p[:, 0] * c + p[:, 2] * s, p[:, 1],
-                                     -p[:, 0] * s + p[:, 2] * c], axis=1)
-        picked[y, x] = chosen[k]
     rendered = render.Rendered("bmc_pool")
+    directions, picked = scenes.turned_sets(draw, chosen, angles)
     rendered.arrays.update(directions=directions, chosen=picked,
                            image=np.zeros((draw.size, draw.size, 3)))
     return rendered

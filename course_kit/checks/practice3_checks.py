@@ -145,7 +145,7 @@ def _judge_z(check, rendered, draw, folder):
         exact = scenes.exact_z(draw.positions, p_exponent)
         share = monte_carlo_check.FALSE_FAILURE / (2 * len(exact))
         tolerance = np.array([monte_carlo_check.bernstein_tolerance(
-            [mu], scenes.z_term_bound(p_exponent), scenes.COURSE_NS_Z, share)
+            [mu], scenes.z_term_bound(), scenes.COURSE_NS_Z, share)
             for mu in exact])
         lines.append(f"  {label}: yours {np.round(got, 6)}, exact {np.round(exact, 6)} "
                      f"+- {np.round(tolerance, 4)}, the course's seeded estimate "

@@ -176,7 +176,7 @@ def course_z(seed, positions, p_exponent):
     return np.array(z)
 
 
-def z_term_bound(p_exponent):
+def z_term_bound():
     """The largest term k p / (1 / (2 pi)) of the course's z estimate: k <= 2^(2s-1)/s, p
     <= 1; every term is at least 0 (k >= 2^(2s-1)/s - 2^(s-1) > 0 on the hemisphere)."""
     return 2 * math.pi * 2 ** (2 * SOBOLEV_S - 1) / SOBOLEV_S
@@ -286,3 +286,19 @@ def floor_pixels(draw):
     """Whether each camera ray (rows y) meets 3.3.2's floor, well away from the horizon."""
     d = practice2_scenes.camera_directions(draw.size)
     return d[..., 1] < -practice2_scenes.EDGE * 10
+
+
+def turned_sets(draw, chosen, angles):
+    """3.3.2's data, (directions, chosen), of an integrator that used GP chosen[k] of the
+    pool turned about y by angles[k] at the k-th floor hit (for the kit's tests and
+    benchmarks: what a correct integrator, and each mistake, hands back)."""
+    floor = floor_pixels(draw)
+    directions = np.full((draw.size, draw.size, draw.n_samples, 3), np.nan)
+    picked = np.full((draw.size, draw.size), -1.0)
+    for k, (y, x) in enumerate(np.argwhere(floor)):
+        p = np.asarray(draw.pool[chosen[k]].positions)
+        c, s = math.cos(angles[k]), math.sin(angles[k])
+        directions[y, x] = np.stack([p[:, 0] * c + p[:, 2] * s, p[:, 1],
+                                     -p[:, 0] * s + p[:, 2] * c], axis=1)
+        picked[y, x] = chosen[k]
+    return directions, picked
