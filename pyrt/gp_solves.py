@@ -58,11 +58,14 @@ def check_covariance(Q: np.ndarray, positions: np.ndarray, noise: float,
                      "be largest, k symmetric), or noise_ is too small for these samples")
 
 
-def refined_weights(Q: np.ndarray, z: np.ndarray, invQ: np.ndarray) -> np.ndarray:
+def refined_weights(Q, z: np.ndarray, invQ: np.ndarray) -> np.ndarray:
     """w = z^T Q^-1, from z @ invQ refined by REFINEMENTS steps w += (z - Q w) @ invQ with
     the residual in extended precision (Q symmetric): good to rounding while Q's condition
-    number times the rounding of double precision stays well below 1."""
+    number times the rounding of double precision stays well below 1. Without Q (a
+    compute_inv_Q of one's own, which keeps none), z @ invQ as it is."""
     weights = z @ invQ
+    if Q is None or np.shape(Q) != np.shape(invQ):
+        return weights
     extended_Q = Q.astype(np.longdouble)
     for _ in range(REFINEMENTS):
         residual = z.astype(np.longdouble) - extended_Q @ weights.astype(np.longdouble)
