@@ -46,10 +46,13 @@ class AcceleratedBMC(AcceleratedCMC):
 
     @classmethod
     def can_stand_in(cls, integrator) -> bool:
-        """Whether the integrator's values are those this class repeats (its sample_value
-        is the registered integrator's) and every GP has sample positions with x, y, z."""
+        """Whether the integrator's draws, light and values are those this class repeats
+        (its pick_sample_set, incoming_light and sample_value are the registered
+        integrator's) and every GP has sample positions with x, y, z."""
         registered = fused_integrator(cls.name)
-        if registered is None or type(integrator).sample_value is not registered.sample_value:
+        if registered is None or any(
+                getattr(type(integrator), method, None) is not getattr(registered, method)
+                for method in ("sample_value", "pick_sample_set", "incoming_light")):
             return False
         pool = pool_members(getattr(integrator, "myGP", None))
         return bool(pool) and all(

@@ -9,6 +9,7 @@ from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, CosinePDF, RGBColor, Uniform
                          sample_set_hemisphere, unit_components)
 from PyRT_Core import UNIT_HIGH, UNIT_LOW, Lambertian
 from pyrt.acceleration.culling import scene_size
+from pyrt.acceleration.fingerprints import fused_integrator
 from pyrt.scalar_intersections import POINT_AND_NORMAL
 
 # center_around_normal's "jittered up", the vector its frame starts from
@@ -82,10 +83,13 @@ class AcceleratedCMC:
 
     @staticmethod
     def can_stand_in(integrator) -> bool:
-        """Whether the pdf is UniformPDF or CosinePDF and the scene's terms are all of one
-        kind: no environment map, or no object that emits light (see above)."""
+        """Whether the pdf is UniformPDF or CosinePDF, L_i is the registered integrator's
+        incoming_light and the scene's terms are all of one kind: no environment map, or
+        no object that emits light (see above)."""
         scene = integrator.scene
-        if type(getattr(integrator, "pdf", None)) not in FUSED_PDFS:
+        registered = fused_integrator("cmc")
+        if type(getattr(integrator, "pdf", None)) not in FUSED_PDFS or (
+                type(integrator).incoming_light is not registered.incoming_light):
             return False
         return scene.env_map is None or not any(
             obj.emission.r or obj.emission.g or obj.emission.b for obj in scene.object_list)
