@@ -170,8 +170,8 @@ class GP:
         for i in range(n):
             for j in range(n):
                 Q[i, j] = self.cov_func.eval(self.samples_pos[i], self.samples_pos[j])
-        Q = Q + self.noise ** 2 * np.identity(n)
         # ASSIGNMENT 3.1 END
+        Q = Q + self.noise ** 2 * np.identity(n)
         # FRAMEWORK ONLY BEGIN
         self.Q = check_covariance(Q, positions, self.noise)
         # FRAMEWORK ONLY END

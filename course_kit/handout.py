@@ -59,19 +59,26 @@ def render(self):
     self.scene.save_image(self.get_filename())
 '''
 # A body stub: the course's comment, then what the method does until the student writes it
-BODY_STUBS = {"any_hit": "return False", "compute_color": "pass"}
+BODY_STUBS = {"any_hit": "return False", "compute_color": "pass", "compute_inv_Q": "pass",
+              "compute_z": "pass", "compute_integral_BMC": "pass",
+              "compute_estimate_bmc": "pass", "practice3_methods": "pass",
+              "practice4_methods": "pass"}
 # Where each step's blocks may stand: "class" for whole methods, else the methods whose
 # body they are
-# (Practices 2 to 4: their integrators are stubs in Practice 1)
 STEP_PLACES = {"1.1-1.2": {"class"}, "1.2": {"any_hit", "compute_color"},
                "1.3": {"compute_color"}, "1.4": {"compute_color"},
-               "2.3": {"compute_color", "incoming_light"},
+               "2.3": {"compute_color", "incoming_light"},  # Practice 2's CMCIntegrator
+               # Practices 3 and 4: GaussianProcess.py's stubs, AppWorkbench.py's BMC, the
+               # integrators of Bayesian Monte Carlo and importance sampling
+               "3.1": {"compute_inv_Q", "compute_z", "compute_integral_BMC"},
+               "3.2": {"compute_estimate_bmc", "practice3_methods"},
                "3.3": {"compute_color", "sample_value"}, "3.3.2": {"pick_sample_set"},
-               "4.1": {"__init__"}, "4.2": {"sample_value"}}
-# The steps whose stub does what the step before them does, so that the rest still runs:
-# one GP unturned (Assignment 3.3 before 3.3.2), the uniform pdf (Practice 2's)
-STEP_STUBS = {"3.3.2": "return self.myGP, 0.0",
-              "4.1": "super().__init__(n, filename_, experiment_name)"}
+               "4.1": {"practice4_methods", "__init__"},
+               "4.2": {"practice4_methods", "sample_value"}}
+# The blocks (step, place) whose stub does what the step before them does, so that the
+# rest still runs: one GP unturned (Assignment 3.3 before 3.3.2), the uniform pdf
+STEP_STUBS = {("3.3.2", "pick_sample_set"): "return self.myGP, 0.0",
+              ("4.1", "__init__"): "super().__init__(n, filename_, experiment_name)"}
 FRAMEWORK_ONLY = "FRAMEWORK ONLY"
 
 MARKER = re.compile(r"(?P<indent>[ ]*)# (?P<kind>ASSIGNMENT (?P<step>\S+)|FRAMEWORK ONLY) "
@@ -91,7 +98,7 @@ def _stub(step, place, indent):
     if place == "class":
         text = RENDER_STUB
     else:
-        body = STEP_STUBS.get(step) or BODY_STUBS.get(place, "pass")
+        body = STEP_STUBS.get((step, place)) or BODY_STUBS.get(place, "pass")
         text = f"# ASSIGNMENT {step}: PUT YOUR CODE HERE\n{body}\n"
     return textwrap.indent(text, indent).splitlines(keepends=True)
 

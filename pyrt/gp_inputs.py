@@ -71,20 +71,22 @@ def positions_array(samples_pos) -> np.ndarray:
         raise TypeError("GP.add_sample_pos: samples_pos_ must be a list of Vector3D "
                         "directions (the first list that sample_set_hemisphere returns, "
                         "not the pair)") from None
-    for index, (x, y, z) in enumerate(array):
-        length = math.sqrt(x * x + y * y + z * z)
+    with np.errstate(invalid="ignore", over="ignore"):
+        lengths = np.sqrt(np.einsum("ij,ij->i", array, array))
+    bad = ~(np.abs(lengths - 1.0) <= UNIT_TOLERANCE) | (array[:, 1] < -UNIT_TOLERANCE)
+    if bad.any():
+        index = int(np.argmax(bad))
+        position, length, y = positions[index], lengths[index], array[index, 1]
         if not math.isfinite(length):
             raise ValueError(f"GP.add_sample_pos: position {index} is not finite: "
-                             f"{positions[index]!r}")
+                             f"{position!r}")
         if abs(length - 1.0) > UNIT_TOLERANCE:
             raise ValueError(f"GP.add_sample_pos: position {index} is not a unit direction "
-                             f"(length {length:.6g}): {positions[index]!r}; Normalize it")
-        if y < -UNIT_TOLERANCE:
-            raise ValueError(f"GP.add_sample_pos: position {index} lies below the "
-                             f"hemisphere around +y (y = {y:.6g}): {positions[index]!r}; "
-                             "the GP's samples are directions around +y, as "
-                             "sample_set_hemisphere draws them (centre them around a "
-                             "normal afterwards)")
+                             f"(length {length:.6g}): {position!r}; Normalize it")
+        raise ValueError(f"GP.add_sample_pos: position {index} lies below the hemisphere "
+                         f"around +y (y = {y:.6g}): {position!r}; the GP's samples are "
+                         "directions around +y, as sample_set_hemisphere draws them "
+                         "(centre them around a normal afterwards)")
     return array
 
 
@@ -102,15 +104,22 @@ def check_values(samples_val, n_positions):
     if len(values) != n_positions:
         raise ValueError(f"GP.add_sample_val: {len(values)} values for {n_positions} sample "
                          "positions; pass one value per position, in the same order")
+    colours = [isinstance(v, RGBColor) for v in values]
     for index, value in enumerate(values):
-        if isinstance(value, RGBColor):
-            channels = (value.r, value.g, value.b)
-        elif is_number(value):
-            channels = (value,)
-        else:
-            raise TypeError(f"GP.add_sample_val: value {index} must be an RGBColor or a "
-                            f"number, got {value!r}")
-        if not all(is_number(c) and math.isfinite(c) for c in channels):
-            raise ValueError(f"GP.add_sample_val: value {index} is not finite: {value!r}; "
-                             "every observation must be a finite number")
+        parts = (value.r, value.g, value.b) if colours[index] else (value,)
+        if not all(is_number(part) for part in parts):
+            raise TypeError(f"GP.add_sample_val: value {index} must be an RGBColor of "
+                            f"numbers or a number, got {value!r}")
+    if any(colours) and not all(colours):
+        raise TypeError(f"GP.add_sample_val: value {colours.index(not colours[0])} is "
+                        f"{'a number' if colours[0] else 'an RGBColor'} where value 0 is "
+                        f"{'an RGBColor' if colours[0] else 'a number'}; pass RGBColors "
+                        "only or numbers only")
+    channels = np.array([(v.r, v.g, v.b) for v in values] if colours[0] else values,
+                        dtype=float)
+    finite = np.isfinite(channels).reshape(len(values), -1).all(axis=1)
+    if not finite.all():
+        index = int(np.argmin(finite))
+        raise ValueError(f"GP.add_sample_val: value {index} is not finite: "
+                         f"{values[index]!r}; every observation must be a finite number")
     return values

@@ -37,6 +37,12 @@ HALF_PI = math.pi / 2
 FIRST_STEP = 1 / 8
 FINEST_STEP = 1 / 128
 TOLERANCE = 1e-9
+# symmetric_z takes, for each kernel and p, the largest step whose z agrees with that of
+# half the step to CALIBRATED (relative) at every polar angle of CALIBRATION_ANGLES: the
+# whole range, and angles ever closer to the pole and to the horizon
+CALIBRATED = 1e-13
+CALIBRATION_ANGLES = np.concatenate([np.linspace(0.0, HALF_PI, 129),
+                                     np.logspace(-12, -1, 23), HALF_PI - np.logspace(-12, -1, 23)])
 # psi on the whole ring: the trapezoidal rule (exact for trigonometric polynomials of lower
 # degree, spectrally accurate for smooth periodic integrands); on an arc: Gauss-Legendre
 RING_POINTS = 64
@@ -145,19 +151,52 @@ def polar_angles(positions: np.ndarray) -> np.ndarray:
     return np.arctan2(np.hypot(positions[:, 0], positions[:, 2]), positions[:, 1])
 
 
+def swept_z(kernel: RadialProfile, p: PolarProfile, theta: np.ndarray,
+            step: float) -> np.ndarray:
+    """z at samples of polar angles theta, for a kernel of the distance and a p symmetric
+    about +y (the module's docstring), by the tanh-sinh rule of the given step."""
+    total = np.zeros(len(theta))
+    for sweep in sweeps(theta, tanh_sinh(step)):
+        k = kernel(4 * np.sin(sweep.gamma / 2) ** 2)
+        total += (sweep.weights * k * ring_integral(p, sweep)).sum(axis=1)
+    return total
+
+
+@lru_cache(maxsize=64)
+def calibrated_step(kernel: RadialProfile, p: PolarProfile) -> float:
+    """The step of the tanh-sinh rule that gives this kernel's and p's z to CALIBRATED at
+    every angle of CALIBRATION_ANGLES (FINEST_STEP at most)."""
+    step, coarse = FIRST_STEP, swept_z(kernel, p, CALIBRATION_ANGLES, FIRST_STEP)
+    while step > FINEST_STEP:
+        fine = swept_z(kernel, p, CALIBRATION_ANGLES, step / 2)
+        if np.all(np.abs(coarse - fine) <= CALIBRATED * np.abs(fine)):
+            return step
+        step, coarse = step / 2, fine
+    return FINEST_STEP
+
+
 def symmetric_z(kernel: RadialProfile, p: PolarProfile, theta: np.ndarray) -> np.ndarray:
     """z at samples of polar angles theta, for a kernel of the distance and a p symmetric
-    about +y (the module's docstring), to rounding."""
-    def integrate(step):
-        total = np.zeros(len(theta))
-        for sweep in sweeps(theta, tanh_sinh(step)):
-            k = kernel(4 * np.sin(sweep.gamma / 2) ** 2)
-            total += (sweep.weights * k * ring_integral(p, sweep)).sum(axis=1)
-        return total
-    return converged(integrate)
+    about +y, to rounding, by the rule of the step calibrated for them."""
+    return swept_z(kernel, p, theta, calibrated_step(kernel, p))
 
 
-def general_z(cov_func, p_func, positions: np.ndarray) -> np.ndarray:
+class Resolution(NamedTuple):
+    """How finely general_z integrates: the tanh-sinh step in gamma (None: halved from
+    FIRST_STEP until it converges) and the points of psi on whole rings and on arcs."""
+
+    step: Optional[float]
+    ring_points: int
+    arc_points: int
+
+
+# z to rounding; z on k_bar's grid of directions, to about 1e-7
+FINE = Resolution(None, RING_POINTS, ARC_POINTS)
+COARSE = Resolution(1 / 4, 16, 16)
+
+
+def general_z(cov_func, p_func, positions: np.ndarray,
+              resolution: Resolution = FINE) -> np.ndarray:
     """z for any kernel and p (k and p through their profiles when they have one, else
     through their eval), psi integrated on each ring by the trapezoidal rule (whole ring)
     or Gauss-Legendre (arc)."""
@@ -169,7 +208,7 @@ def general_z(cov_func, p_func, positions: np.ndarray) -> np.ndarray:
         for i, omega_i in enumerate(positions):
             frame = ring_frame(omega_i, theta[i])
             for sweep in sweeps(theta[i:i + 1], tanh_sinh(step)):
-                psi, psi_weights = ring_angles(sweep)
+                psi, psi_weights = ring_angles(sweep, resolution)
                 omega = ring_directions(frame, sweep.gamma[0], psi)
                 if kernel is not None:
                     k = np.repeat(kernel(4 * np.sin(sweep.gamma[0] / 2) ** 2),
@@ -182,6 +221,8 @@ def general_z(cov_func, p_func, positions: np.ndarray) -> np.ndarray:
                 values = values.reshape(psi.shape) * psi_weights
                 total[i] += (sweep.weights[0] * values.sum(axis=1)).sum()
         return total
+    if resolution.step is not None:
+        return integrate(resolution.step)
     return converged(integrate)
 
 
@@ -196,13 +237,14 @@ def ring_frame(omega_i: np.ndarray, theta_i: float) -> np.ndarray:
     return np.array([omega_i, e1, np.cross(omega_i, e1)])
 
 
-def ring_angles(sweep: Sweep):
+def ring_angles(sweep: Sweep, resolution: Resolution):
     """The angles psi of the nodes on each ring of a sweep (rows) and their weights."""
     if sweep.whole_ring:
-        psi = np.arange(RING_POINTS) * (2 * math.pi / RING_POINTS)
+        points = resolution.ring_points
+        psi = np.arange(points) * (2 * math.pi / points)
         return np.broadcast_to(psi, sweep.gamma.shape[1:] + psi.shape), np.full(
-            psi.shape, 2 * math.pi / RING_POINTS)
-    rule = gauss_legendre(ARC_POINTS)
+            psi.shape, 2 * math.pi / points)
+    rule = gauss_legendre(resolution.arc_points)
     psi0 = arc_end(sweep)[0][:, None]
     return psi0 * (2 * rule.from_left - 1), 2 * psi0 * rule.weights
 
@@ -242,9 +284,10 @@ def symmetric_k_bar(kernel: RadialProfile, p: PolarProfile) -> float:
 
 
 def k_bar(cov_func, p_func) -> float:
-    """The double integral over the hemisphere of k(omega, omega') p(omega) p(omega'): for
-    any other kernel or p, z on a grid of directions (the tanh-sinh rule of step
-    GENERAL_THETA_STEP in theta, the trapezoidal rule of GENERAL_PHI_POINTS in phi), good to about 1e-7."""
+    """The double integral over the hemisphere of k(omega, omega') p(omega) p(omega'): to
+    rounding for a kernel of the distance and a symmetric p; for any other, from z (of
+    COARSE resolution) on a grid of directions (the tanh-sinh rule of step GENERAL_THETA_STEP in theta, the
+    trapezoidal rule of GENERAL_PHI_POINTS points in phi), good to about 1e-7."""
     kernel, p = radial_profile(cov_func), polar_profile(p_func)
     if kernel is not None and p is not None:
         return symmetric_k_bar(kernel, p)
@@ -254,7 +297,7 @@ def k_bar(cov_func, p_func) -> float:
     t, f = np.meshgrid(theta, phi, indexing="ij")
     directions = np.stack([np.sin(t) * np.sin(f), np.cos(t), np.sin(t) * np.cos(f)],
                           axis=-1).reshape(-1, 3)
-    z = general_z(cov_func, p_func, directions)
+    z = general_z(cov_func, p_func, directions, COARSE)
     p_values = p(directions[:, 1]) if p is not None else array_eval(p_func.eval, directions)
     weights = np.repeat(HALF_PI * rule.weights * np.sin(theta), len(phi)) * (
         2 * math.pi / len(phi))
