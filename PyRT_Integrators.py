@@ -315,7 +315,6 @@ class CMCIntegrator(Integrator):
         # ASSIGNMENT 2.3 END
 
 
-# FRAMEWORK ONLY BEGIN
 def pdf_label(pdf):
     """The part of a Monte Carlo integrator's file name that names its pdf: '' for
     UniformPDF (the course's names), 'cos<exp>_' for CosinePDF(exp), else the pdf's class
@@ -329,7 +328,6 @@ def pdf_label(pdf):
     if type(pdf) is CosinePDF:
         return f"cos{pdf.exp:g}_" if is_number(pdf.exp) else f"cos{pdf.exp}_"
     return type(pdf).__name__ + "_"
-# FRAMEWORK ONLY END
 
 
 # ------------------------------------------------------------------------------------------

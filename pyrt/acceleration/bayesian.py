@@ -85,6 +85,8 @@ class AcceleratedBMC(AcceleratedCMC):
         tests, others = self.tests, self.others[frame.index]
         clearance, emitting, emissions = self.own_clearance, self.emitting, self.emissions
         env_map, trace_all = self.env_map, self.trace_all
+        last_row, last_column, to_floor = self.last_row, self.last_column, floor
+        arc_tangent, arc_cosine, inverse_pi = atan2, acos, 1 / pi
         emitted, emitted_at = [], []  # the emission of the samples that hit an emitter
         map_rows, map_columns, map_at = [], [], []  # the texels of those that see the map
         for j, (wx, wy, wz, rx, ry, rz, cos_theta) in enumerate(
@@ -102,10 +104,10 @@ class AcceleratedBMC(AcceleratedCMC):
                     emitted.append(emissions[hit_index])
                     emitted_at.append(j)
             elif env_map is not None:  # env_map.getValue(wi) (texel_of), written out
-                u = (1 + (1 / pi) * atan2(wx, -wz)) / 2
-                v = (1 / pi) * acos(min(1.0, max(-1.0, wy)))
-                map_rows.append(floor(v * self.last_row))
-                map_columns.append(floor(u * self.last_column))
+                u = (1 + inverse_pi * arc_tangent(wx, -wz)) / 2
+                v = inverse_pi * arc_cosine(wy if -1.0 <= wy <= 1.0 else min(1.0, max(-1.0, wy)))
+                map_rows.append(to_floor(v * last_row))
+                map_columns.append(to_floor(u * last_column))
                 map_at.append(j)
         values = np.zeros((len(cosines), 3))  # Y_j: zero unless set here
         if emitted_at or map_at:
