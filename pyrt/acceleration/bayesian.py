@@ -63,9 +63,10 @@ class AcceleratedBMC(AcceleratedCMC):
     def compute_color(self, ray):
         """BayesianMonteCarloIntegrator.compute_color(ray) (or BMCISIntegrator's)."""
         frame = self.camera_hit(ray)
-        if type(frame) is not HitFrame:
+        if type(frame) is not tuple:
             return frame
-        normal = self.columns(frame.normal)
+        frame = HitFrame(*frame)
+        normal = self.columns((frame.nx, frame.ny, frame.nz))
         draw = self.random
         which = floor(draw() * len(self.pool))  # pick_sample_set: the GP, then the angle
         alpha = 2 * pi * draw()
@@ -74,14 +75,15 @@ class AcceleratedBMC(AcceleratedCMC):
         # rotate_around_y(alpha, omega), then center_around_normal: Normalize(v x + w y + u z)
         # on the rows x, y, z of all samples at once, each row an operation of the plain code
         x, z = x * c + z * s, -x * s + z * c
-        w = self.columns(frame.v) * x + normal * y + self.columns(frame.u) * z
+        w = (self.columns((frame.vx, frame.vy, frame.vz)) * x + normal * y
+             + self.columns((frame.ux, frame.uy, frame.uz)) * z)
         squares = w * w
         w = w * (1.0 / np.sqrt(squares[0] + squares[1] + squares[2]))  # unit_components'
         products = normal * w
         cosines = products[0] + products[1] + products[2]  # get_value's Dot(n, wi)
         squares = w * w
         r = w * (1.0 / np.sqrt(squares[0] + squares[1] + squares[2]))  # closest_hit's Normalize
-        px, py, pz = frame.point
+        px, py, pz = frame.px, frame.py, frame.pz
         tests, others = self.tests, self.others[frame.index]
         clearance, emitting, emissions = self.own_clearance, self.emitting, self.emissions
         env_map, trace_all = self.env_map, self.trace_all
