@@ -69,6 +69,7 @@ class AcceleratedCMC:
         self.emissions = [(obj.emission.r, obj.emission.g, obj.emission.b)
                           for obj in scene.object_list]
         self.env_map = env_map = scene.env_map
+        self.texels = self.last_column = self.last_row = None  # the map's, if there is one
         if env_map is not None:
             self.texels = env_map.env_map_hdr
             self.last_column, self.last_row = env_map.width - 1, env_map.height - 1
