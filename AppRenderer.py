@@ -18,6 +18,7 @@ from pyrt.explain import explain_pixel
 from pyrt.explain_picture import save_picture
 from pyrt.images import opencv_problem
 # FRAMEWORK ONLY BEGIN
+from pyrt.gaussian_pools import make_gp_pool
 from pyrt.sampling import ADAPTIVE_TOLERANCE
 # FRAMEWORK ONLY END
 
@@ -126,11 +127,21 @@ INTEGRATORS = {
     "normal": NormalIntegrator,
     "phong": PhongIntegrator,
 }
-# Practice 2's classic Monte Carlo, n samples per hit; a PyRT_Integrators.py of a student's
-# own, written before it, may not have it
-if "CMCIntegrator" in globals():
-    INTEGRATORS["cmc"] = CMCIntegrator
-MONTE_CARLO = ("cmc",)  # the integrators that take --samples
+# Practice 2's classic Monte Carlo, n samples per hit, and Practices 3 and 4's importance
+# sampling and Bayesian Monte Carlo; a PyRT_Integrators.py of a student's own, written
+# before them, may not have them
+for _name, _class in (("cmc", "CMCIntegrator"), ("cmc-is", "CMCISIntegrator"),
+                      ("bmc", "BayesianMonteCarloIntegrator"), ("bmc-is", "BMCISIntegrator")):
+    if _class in globals():
+        INTEGRATORS[_name] = globals()[_class]
+del _name, _class
+MONTE_CARLO = ("cmc", "cmc-is", "bmc", "bmc-is")  # the integrators that take --samples
+# FRAMEWORK ONLY BEGIN
+# The Bayesian ones' GPs (GaussianProcess.py), each with a sample set of its own: (the pdf
+# of the samples, p_func), as Assignments 3.3 and Practice 4's Part II make them
+BAYESIAN = {"bmc": (UniformPDF(), Constant(1)), "bmc-is": (CosinePDF(1), CosineLobe(1))}
+DEFAULT_POOL = 16  # GPs in the pool of Assignment 3.3.2
+# FRAMEWORK ONLY END
 SCENES = {
     "cornell": lambda width, height: cornell_box_scene(0.75, 2, width=width, height=height),
     "sphere": lambda width, height: sphere_test_scene(width=width, height=height),
@@ -142,11 +153,11 @@ SCENES = {
                                                             width=width, height=height),
 }
 # The scene each integrator renders when --scene is not given: Figure 1 of Practice 1, and
-# Figure 3 of Practice 2 for the Monte Carlo integrator
-DEFAULT_SCENES = {"cmc": "sphere-map"}
+# Figure 3 of Practice 2 (Figure 2 of Practice 3) for the Monte Carlo integrators
+DEFAULT_SCENES = {name: "sphere-map" for name in MONTE_CARLO}
 DEFAULT_SCENE = "cornell"
-# Samples per hit of the Monte Carlo integrator when --samples is not given, as in the
-# course's Figure 3 of Practice 2
+# Samples per hit of the Monte Carlo integrators when --samples is not given, as in the
+# course's Figure 3 of Practice 2 and Figure 2 of Practice 3
 DEFAULT_SAMPLES = 40
 # (figure, integrator, scene, max_depth): Figure 4 has two images, depth and normal
 FIGURES = [
@@ -159,13 +170,24 @@ FIGURES = [
 ]
 
 
-def make_integrator(name, filename, max_depth=None, experiment_name="", samples=None):
+def make_integrator(name, filename, max_depth=None, experiment_name="", samples=None,
+                    pool=None):
     """The integrator called `name` (a key of INTEGRATORS) writing to `filename`; samples
-    is the Monte Carlo integrator's n (default DEFAULT_SAMPLES)."""
+    is the Monte Carlo integrators' n (default DEFAULT_SAMPLES), pool the number of GPs of
+    the Bayesian ones (default DEFAULT_POOL), whose making is timed and said once."""
     if name == "depth" and max_depth is not None:
         return DepthIntegrator(filename, max_depth, experiment_name)
+    samples = samples or DEFAULT_SAMPLES
+    # FRAMEWORK ONLY BEGIN
+    if name in BAYESIAN:
+        pdf, p_func = BAYESIAN[name]
+        gps = make_gp_pool(pool or DEFAULT_POOL, samples, pdf, p_func)
+        print(f"Made {len(gps.gps)} GPs of {samples} samples each (Q^-1, z and the weights, "
+              f"p = {type(p_func).__name__}) in {gps.seconds:.2f} s")
+        return INTEGRATORS[name](samples, gps.gps, filename, experiment_name)
+    # FRAMEWORK ONLY END
     if name in MONTE_CARLO:
-        return INTEGRATORS[name](samples or DEFAULT_SAMPLES, filename, experiment_name)
+        return INTEGRATORS[name](samples, filename, experiment_name)
     return INTEGRATORS[name](filename, experiment_name=experiment_name)
 
 
@@ -373,17 +395,26 @@ def parse_args(argv):
                     "(.npy, .hdr) and shown in a window.")
     parser.add_argument("--integrator", choices=INTEGRATORS, default="phong",
                         help="how to colour each pixel (default: phong; cmc: classic Monte "
-                             "Carlo, Practice 2)")
+                             "Carlo, Practice 2; cmc-is: the same with cosine-weighted "
+                             "samples, Practice 4; bmc: Bayesian Monte Carlo with a pool of "
+                             "GPs, Practice 3; bmc-is: the same with the cosine in the GPs' "
+                             "p, Practice 4)")
     parser.add_argument("--scene", choices=SCENES, default=None,
                         help="cornell: the Cornell box of Figure 1; sphere: the sphere above "
                              "a floor of Figures 2-5; sphere-map: the same lit by the "
                              "course's environment map (Practice 2, Figure 3); cornell-area: "
                              "the Cornell box lit by an area light (default: cornell, and "
-                             "sphere-map for cmc)")
+                             "sphere-map for the Monte Carlo integrators)")
     parser.add_argument("--samples", type=positive_arg(int), default=None,
-                        help="with --integrator cmc: the directions sampled at each hit "
+                        help="with a Monte Carlo --integrator: the directions sampled at "
+                             "each hit "
                              f"(default {DEFAULT_SAMPLES}), apart from --spp, the camera rays "
                              "per pixel")
+    # FRAMEWORK ONLY BEGIN
+    parser.add_argument("--pool", type=positive_arg(int), default=None,
+                        help="with --integrator bmc or bmc-is: the GPs of the pool, one drawn "
+                             f"at random at each hit (default {DEFAULT_POOL})")
+    # FRAMEWORK ONLY END
     parser.add_argument("--width", type=positive_arg(int), default=500,
                         help="image width in pixels (default 500)")
     parser.add_argument("--height", type=positive_arg(int), default=500,
@@ -434,11 +465,14 @@ def parse_args(argv):
                          f"x {args.height} image: x goes from 0 to {args.width - 1}, y from "
                          f"0 to {args.height - 1}")
     if args.samples is not None and args.integrator not in MONTE_CARLO:
-        parser.error("argument --samples: only applies with --integrator "
-                     + " or ".join(MONTE_CARLO))
+        parser.error("argument --samples: only applies with a Monte Carlo --integrator ("
+                     + ", ".join(MONTE_CARLO) + ")")
     if args.scene is None:
         args.scene = DEFAULT_SCENES.get(args.integrator, DEFAULT_SCENE)
     # FRAMEWORK ONLY BEGIN
+    if args.pool is not None and args.integrator not in BAYESIAN:
+        parser.error("argument --pool: only applies with --integrator "
+                     + " or ".join(BAYESIAN))
     if args.adaptive and args.spp == 1:
         parser.error("argument --adaptive: needs --spp N with N of 2 or more, the rays the "
                      "pixels at edges get")
@@ -486,8 +520,8 @@ def main(argv=None):
     if args.all_figures:
         jobs = [(figure_integrator(entry, base), SCENES[entry[2]]) for entry in FIGURES]
     else:
-        jobs = [(make_integrator(args.integrator, base, args.max_depth, samples=args.samples),
-                 SCENES[args.scene])]
+        jobs = [(make_integrator(args.integrator, base, args.max_depth, samples=args.samples,
+                                 pool=getattr(args, "pool", None)), SCENES[args.scene])]
     options = render_options(args)
     try:
         pngs = [render(integrator, make_scene(args.width, args.height), **options)

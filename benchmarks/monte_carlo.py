@@ -1,4 +1,5 @@
-"""The classic Monte Carlo integrator: how fast it renders, and the trade of time for error.
+"""The Monte Carlo integrators: how fast the classic one renders, and the trade of time for
+error of all four (classic and Bayesian, each with and without importance sampling).
 
 Speed: Practice 2's Figure 3 (the sphere scene lit by the course's environment map, or by
 PyRT's sky where the map is not there; CMCIntegrator with 40 samples per hit) at 160 x 160
@@ -13,11 +14,15 @@ reference of 1024: the RMSE of each image, its time, their product and RMSE^2 x 
 variance times the time, constant for an unbiased estimator whose error falls as
 1/sqrt(N)); a log-log plot of RMSE against N beside the slope -1/2, and the per-pixel
 error of N = 16 (Assignment 2.4). Adaptive sampling at the same number of camera rays is
-measured beside uniform sampling.
+measured beside uniform sampling. Then CMC, CMC IS, BMC and BMC IS (pools of 16 GPs) from
+N = 8 to 256 against the same reference: RMSE against time, the GPs' making included, in
+one plot; and at N = 40 the correlation of neighbouring pixels' errors, beside BMC with
+one GP never turned (Assignment 3.3 before 3.3.2), whose pattern shows.
 
     python -m benchmarks.monte_carlo                 # both, about ten minutes on two cores
     python -m benchmarks.monte_carlo --only trade --reference-samples 256   # quicker
-Results go to out/monte_carlo.md and out/monte_carlo_*.png.
+Results go to out/monte_carlo.md and out/monte_carlo_*.png (monte_carlo_methods.png: the
+four methods; monte_carlo_patterns.png: the error images at N = 40).
 """
 import argparse
 import random
@@ -34,8 +39,10 @@ from AppRenderer import SCENES, positive_arg
 from benchmarks.flat_loop import flat_cmc
 from benchmarks.timing import (OUT_DIR, markdown_table, paired_ratio, progress, run_command,
                                timed_turns, write_report)
-from PyRT_Common import Ray, Vector3D
-from PyRT_Integrators import CMCIntegrator
+from pyrt.gaussian_pools import make_gp_pool
+from PyRT_Common import Constant, CosineLobe, CosinePDF, Ray, UniformPDF, Vector3D
+from PyRT_Integrators import (BayesianMonteCarloIntegrator, BMCISIntegrator, CMCIntegrator,
+                              CMCISIntegrator)
 from pyrt.workers import usable_cores
 
 # Target: render() in one process at most this multiple of the flat loop's time per sample
@@ -43,6 +50,8 @@ FLAT_LOOP_TARGET = 1.25
 SPEED_SIZE, SPEED_SAMPLES = 160, 40
 TRADE_SIZE, TRADE_SAMPLES, REFERENCE_SAMPLES = 128, (4, 8, 16, 32, 64, 128, 256), 1024
 ERROR_IMAGE_SAMPLES = 16
+# The four methods of Practices 2 to 4 against time: their samples per hit, their pool of GPs
+METHOD_SAMPLES, POOL_SIZE, PATTERN_SAMPLES = (8, 16, 32, 64, 128, 256), 16, 40
 SEED = 2026
 SCENE = "sphere-map"
 
@@ -165,7 +174,114 @@ def trade(reference_samples: int, workers: int, folder: Path, out: Path) -> str:
     return (table + f"\n\n{size}x{size} pixels, {workers} processes, against a reference of "
             f"{reference_samples} samples per hit; RMSE over every pixel and channel of the "
             f"linear image. Fitted slope of log RMSE against log N: {slope:.3f} (theory: "
-            "-0.5).\n\n" + adaptive_against_uniform(reference, workers, folder))
+            "-0.5).\n\n" + adaptive_against_uniform(reference, workers, folder) + "\n\n"
+            + four_methods(reference, workers, folder, out))
+
+
+class OneUnturnedGP(BayesianMonteCarloIntegrator):
+    """Assignment 3.3 before 3.3.2: the first GP of the pool at every hit, never turned."""
+
+    def pick_sample_set(self):
+        return self.myGP[0], 0.0
+
+
+def method_integrator(name: str, samples: int, folder: Path):
+    """(integrator, seconds its GPs took to make) for one of the four methods."""
+    if name == "CMC":
+        return CMCIntegrator(samples, str(folder / "m")), 0.0
+    if name == "CMC IS":
+        return CMCISIntegrator(samples, str(folder / "m")), 0.0
+    pdf, p_func, make = {"BMC": (UniformPDF(), Constant(1), BayesianMonteCarloIntegrator),
+                         "BMC IS": (CosinePDF(1), CosineLobe(1), BMCISIntegrator),
+                         "BMC, one GP unturned": (UniformPDF(), Constant(1), OneUnturnedGP)}[name]
+    pool = make_gp_pool(POOL_SIZE, samples, pdf, p_func)
+    return make(samples, pool.gps, str(folder / "m")), pool.seconds
+
+
+def neighbour_correlation(error: np.ndarray, hit: np.ndarray) -> float:
+    """The correlation of the errors (mean over channels) of horizontally and vertically
+    neighbouring pixels, both of whose camera rays hit an object."""
+    error = error.mean(axis=2)
+    pairs = [(error[:, :-1][hit[:, :-1] & hit[:, 1:]], error[:, 1:][hit[:, :-1] & hit[:, 1:]]),
+             (error[:-1][hit[:-1] & hit[1:]], error[1:][hit[:-1] & hit[1:]])]
+    a = np.concatenate([p[0] for p in pairs])
+    b = np.concatenate([p[1] for p in pairs])
+    return float(np.corrcoef(a, b)[0, 1])
+
+
+def four_methods(reference: np.ndarray, workers: int, folder: Path, out: Path) -> str:
+    """CMC, CMC IS, BMC and BMC IS from 8 to 256 samples per hit: the RMSE of each image
+    against the reference and its time, the GPs' making included (and given apart), plotted
+    as RMSE against time; then at 40 samples the correlation of neighbouring pixels'
+    errors, with the pattern BMC leaves with one GP never turned, and the error images."""
+    size, rows, curves = TRADE_SIZE, [], {}
+    for name in ("CMC", "CMC IS", "BMC", "BMC IS"):
+        for samples in METHOD_SAMPLES:
+            progress(f"  {name}, N = {samples}")
+            random.seed(SEED)
+            integrator, gp_seconds = method_integrator(name, samples, folder)
+            integrator.add_scene(scene(size))
+            start = time.perf_counter()
+            integrator.render(progress=False, workers=workers)
+            elapsed = time.perf_counter() - start + gp_seconds
+            error = rmse(integrator.scene.rendered_image, reference)
+            curves.setdefault(name, []).append((elapsed, error))
+            rows.append([name, samples, f"{error:.4f}", f"{elapsed:.2f}", f"{gp_seconds:.2f}",
+                         f"{error ** 2 * elapsed:.5f}"])
+    plot_methods(curves, out / "monte_carlo_methods.png")
+    hit = hit_pixels(size)
+    pattern_rows, errors = [], {}
+    for name in ("CMC", "BMC", "BMC, one GP unturned"):
+        random.seed(SEED)
+        integrator, _ = method_integrator(name, PATTERN_SAMPLES, folder)
+        integrator.add_scene(scene(size))
+        integrator.render(progress=False, workers=workers)
+        errors[name] = integrator.scene.rendered_image - reference
+        pattern_rows.append([name, f"{rmse(integrator.scene.rendered_image, reference):.4f}",
+                             f"{neighbour_correlation(errors[name], hit):.3f}"])
+    plot_error_images(errors, out / "monte_carlo_patterns.png")
+    return ("The four methods, a pool of " f"{POOL_SIZE} GPs for each Bayesian render:\n\n"
+            + markdown_table(["Method", "N", "RMSE", "Time (s)", "of it, the GPs (s)",
+                              "RMSE^2 x time"], rows, 1)
+            + f"\n\nAt N = {PATTERN_SAMPLES}, the error's correlation between neighbouring "
+            "pixels (both on an object):\n\n"
+            + markdown_table(["Method", "RMSE", "Neighbour correlation"], pattern_rows, 1))
+
+
+def plot_methods(curves: dict, path: Path) -> None:
+    """RMSE against time on log-log axes, one line per method, its points N = 8 ... 256."""
+    import matplotlib.pyplot as plt
+    figure, axes = plt.subplots(figsize=(6.5, 4.8))
+    for (name, points), marker in zip(curves.items(), ("o", "v", "x", "1")):
+        times, errors = zip(*points)
+        axes.loglog(times, errors, marker + "-", label=name, markersize=8)
+        for (t, e), samples in zip(points, METHOD_SAMPLES):
+            if samples in (8, 256):
+                axes.annotate(f"N={samples}", (t, e), textcoords="offset points",
+                              xytext=(4, 4), fontsize=7)
+    axes.set_xlabel("time of the render, the GPs' making included (s)")
+    axes.set_ylabel("RMSE against the reference")
+    axes.set_title("Error against time: classic and Bayesian Monte Carlo")
+    axes.legend()
+    axes.grid(True, which="both", alpha=0.3)
+    figure.tight_layout()
+    figure.savefig(path, dpi=100)
+    plt.close(figure)
+
+
+def plot_error_images(errors: dict, path: Path) -> None:
+    """The signed error (mean over channels) of each render, side by side, on one scale."""
+    import matplotlib.pyplot as plt
+    limit = max(float(np.abs(e.mean(axis=2)).max()) for e in errors.values()) * 0.5
+    figure, axes = plt.subplots(1, len(errors), figsize=(4 * len(errors), 4.2))
+    for ax, (name, error) in zip(axes, errors.items()):
+        shown = ax.imshow(error.mean(axis=2), cmap="RdBu", vmin=-limit, vmax=limit)
+        ax.set_axis_off()
+        ax.set_title(f"{name}, N = {PATTERN_SAMPLES}", fontsize=10)
+    figure.colorbar(shown, ax=list(axes), label="image - reference, mean of r, g, b",
+                    shrink=0.8)
+    figure.savefig(path, dpi=100)
+    plt.close(figure)
 
 
 def adaptive_against_uniform(reference: np.ndarray, workers: int, folder: Path) -> str:

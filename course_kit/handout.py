@@ -88,7 +88,6 @@ BODY_STUBS = {"any_hit": "return False", "compute_color": "pass",
               "practice4_methods": "pass"}
 # Where each step's blocks may stand: "class" for whole methods, else the methods whose
 # body they are
-# (Practices 2 to 4: their integrators are stubs in Practice 1)
 STEP_PLACES = {"1.1-1.2": {"class"}, "1.2": {"any_hit", "compute_color"},
                "1.3": {"compute_color"}, "1.4": {"compute_color"},
                "2.1": {"compute_estimate_cmc"},  # Practice 2's workbench

@@ -121,11 +121,13 @@ def rendered_blocks(integrator, workers, sampling, progress):
     scene = integrator.scene
     height, width = scene.camera.height, scene.camera.width
 
-    # The render's one draw of Python's global generator, from which every row's stream
-    # is made (pyrt.rows.RowStreams); the generator is given back its state after it when
-    # the render ends, however many processes rendered and whatever the rows drew.
+    # The render's one draw of Python's global generator, from which every row's streams
+    # are made (pyrt.rows.RowStreams); the generator is given back its state after it when
+    # the render ends, and numpy's its state before, however many processes rendered and
+    # whatever the rows drew.
     seed = int(random.random() * 2 ** 53)
     after_the_draw = random.getstate()
+    numpy_before = np.random.get_state()  # numpy's generator, which the render does not draw
 
     def passes():
         for rendering in sampling.passes(integrator, workers, seed):
@@ -152,6 +154,7 @@ def rendered_blocks(integrator, workers, sampling, progress):
         raise
     finally:
         random.setstate(after_the_draw)
+        np.random.set_state(numpy_before)
     _report_non_finite(scene.rendered_image, type(integrator).__name__)
 
 

@@ -23,16 +23,21 @@ SAMPLE_SEED = 0x5079_5254  # "PyRT"
 class RowStreams(NamedTuple):
     """The random numbers of a render's rows: before row y of pass `number` is made,
     Python's global generator (what random.random() and the course's random() draw from)
-    is seeded from (seed, number, y). Each row has a stream of its own, whichever process
-    renders it and whatever it rendered before, so the image is the same for any number
-    of workers; seed is one draw of the generator as the render starts."""
+    is seeded from (seed, number, y), and numpy's global generator (np.random.uniform and
+    the like, with which students draw their rotations) from the same three numbers. Each
+    row has a stream of its own, whichever process renders it and whatever it rendered
+    before, so the image is the same for any number of workers; seed is one draw of
+    Python's generator as the render starts."""
 
     seed: int
     number: int = 0
 
     def start(self, y):
-        """Seeds Python's global generator for row y."""
+        """Seeds Python's and numpy's global generators for row y."""
         random.seed(f"{self.seed}:{self.number}:{y}")
+        # one 32-bit number, distinct for every row of every pass (y < 2^20), as cheap to
+        # seed from as numpy allows (a list of numbers takes four times as long)
+        np.random.seed((self.seed ^ (self.number << 20) ^ y) & 0xFFFF_FFFF)
 
 
 def render_block(integrator, y0, y1, rows):

@@ -224,9 +224,35 @@ def _worker_payload(integrator):
         payload = compact_pickle(integrator)
         return payload, pickle.loads(payload), None
     except Exception as error:  # pickle raises several types, all meaning the same here
-        return None, None, (f"the integrator or its scene cannot be sent to worker processes "
-                            f"({type(error).__name__}: {error}); attributes such as lambdas, "
+        where = unpicklable_part(integrator, "integrator")
+        return None, None, (f"{where or 'the integrator or its scene'} cannot be sent to "
+                            f"worker processes ({type(error).__name__}: {error}); attributes "
+                            "such as lambdas, functions or classes defined inside a function, "
                             "open files or generators prevent it")
+
+
+def unpicklable_part(obj, name, depth=4):
+    """The name of the innermost part of obj (its attributes, the items of its lists,
+    tuples and dictionaries, `depth` levels down) that pickle refuses, such as
+    'integrator.myGP[0].p_func'; None when pickle takes obj, or when nothing below it
+    is to blame."""
+    try:
+        pickle.dumps(obj)
+        return None
+    except Exception:
+        pass
+    if depth > 0:
+        if isinstance(obj, (list, tuple)):
+            parts = [(f"{name}[{i}]", item) for i, item in enumerate(obj)]
+        elif isinstance(obj, dict):
+            parts = [(f"{name}[{key!r}]", item) for key, item in obj.items()]
+        else:
+            parts = [(f"{name}.{key}", item) for key, item in getattr(obj, "__dict__", {}).items()]
+        for part_name, part in parts:
+            found = unpicklable_part(part, part_name, depth - 1)
+            if found:
+                return found
+    return name
 
 
 class _SharedImage:

@@ -199,12 +199,41 @@ def test_help_is_the_reference_help(command_line, capsys):
 
 def test_no_options_mean_the_defaults_of_the_readme(command_line):
     assert vars(command_line([])) == {
-        "integrator": "phong", "scene": "cornell", "samples": None, "width": 500,
+        "integrator": "phong", "scene": "cornell", "samples": None, "pool": None, "width": 500,
         "height": 500, "max_depth": None,  # the depth integrator's own, 10
         "out": AppRenderer.DIRECTORY, "workers": None, "spp": 1, "adaptive": False,
         "tolerance": None,  # ADAPTIVE_TOLERANCE, applied by main
         "no_window": False, "explain": None, "all_figures": False}
     assert Path(AppRenderer.DIRECTORY) == REPO / "out"
+
+
+@pytest.mark.parametrize("name, class_name, filename", [
+    ("cmc-is", "CMCISIntegrator", "out/img_MC_cos1_8_samples"),
+    ("bmc", "BayesianMonteCarloIntegrator", "out/img_BMC_8_samples"),
+    ("bmc-is", "BMCISIntegrator", "out/img_BMCIS_8_samples")])
+def test_the_integrators_of_practices_3_and_4_take_samples_and_pools(command_line, capsys,
+                                                                       name, class_name,
+                                                                       filename):
+    args = command_line(["--integrator", name, "--samples", "8"]
+                        + (["--pool", "3"] if name != "cmc-is" else []))
+    assert args.scene == "sphere-map"
+    integrator = AppRenderer.make_integrator(name, "out/img", samples=args.samples,
+                                             pool=args.pool)
+    assert type(integrator).__name__ == class_name and integrator.n_samples == 8
+    assert integrator.get_filename().replace("\\", "/") == filename
+    out = capsys.readouterr().out
+    if name == "cmc-is":
+        assert out == ""
+    else:  # what the GPs cost, said once, before any render
+        assert len(integrator.myGP) == 3 and all(len(gp.weights) == 8 for gp in integrator.myGP)
+        assert out.count("Made 3 GPs of 8 samples each") == 1
+
+
+def test_a_pool_only_applies_to_the_bayesian_integrators(command_line, capsys):
+    with pytest.raises(SystemExit):
+        command_line(["--integrator", "cmc", "--pool", "3"])
+    assert "argument --pool: only applies with --integrator bmc or bmc-is" in (
+        capsys.readouterr().err)
 
 
 def test_the_monte_carlo_integrator_renders_figure_3_of_practice_2_by_default(command_line):
@@ -238,7 +267,8 @@ def test_adaptive_sampling_is_refused_for_monte_carlo_noise(command_line, capsys
 
 def test_samples_are_refused_for_an_integrator_that_takes_none(command_line, capsys):
     assert usage_error(command_line, capsys, ["--samples", "8"]) == (
-        "AppRenderer.py: error: argument --samples: only applies with --integrator cmc")
+        "AppRenderer.py: error: argument --samples: only applies with a Monte Carlo "
+        "--integrator (cmc, cmc-is, bmc, bmc-is)")
 
 
 def test_the_monte_carlo_integrator_renders_from_the_command_line(tmp_path, capsys,

@@ -201,9 +201,11 @@ def test_fast_path_gives_the_plain_codes_image_bit_for_bit(tmp_path, monkeypatch
     assert plain.any() and np.array_equal(fused, plain)
 
 
-def test_fast_path_gives_way_to_a_subclass_with_values_of_its_own(tmp_path, monkeypatch):
+@pytest.mark.parametrize("subclass", ["CosineTwiceBMC", "NumpyRotations"])
+def test_fast_path_gives_way_to_a_subclass_with_values_or_draws_of_its_own(
+        tmp_path, monkeypatch, subclass):
     calls = counted_calls(monkeypatch, AcceleratedBMC)
-    render(tmp_path, CosineTwiceBMC(8, make_pool(1, 8), str(tmp_path / "t")),
+    render(tmp_path, globals()[subclass](8, make_pool(2, 8), str(tmp_path / "t")),
            sky_sphere_scene(12))
     assert calls[0] == 0
 
@@ -212,7 +214,7 @@ def test_fast_path_gives_way_to_a_subclass_with_values_of_its_own(tmp_path, monk
 # Seeded renders: the same image for any workers and start method; pools in workers
 # ------------------------------------------------------------------------------------------
 def test_seeded_render_is_the_same_for_any_workers_and_start_method(tmp_path, monkeypatch,
-                                                                    capfd):
+                                                                    capfd, worker_first):
     pool = make_pool(4, 8)
     renders = {}
     for name, seed, workers, start_method in [("one", 9, 1, None), ("two", 9, 2, None),
@@ -221,6 +223,8 @@ def test_seeded_render_is_the_same_for_any_workers_and_start_method(tmp_path, mo
         with monkeypatch.context() as patch:
             if start_method:
                 patch.setenv(START_METHOD_VARIABLE, start_method)
+            if workers > 1:
+                worker_first()
             renders[name] = render(tmp_path, BayesianMonteCarloIntegrator(
                 8, pool, str(tmp_path / name)), sky_sphere_scene(16), seed, workers=workers)
     err = capfd.readouterr().err
@@ -229,6 +233,35 @@ def test_seeded_render_is_the_same_for_any_workers_and_start_method(tmp_path, mo
     assert np.array_equal(renders["one"], renders["two"])
     assert np.array_equal(renders["one"], renders["spawned"])
     assert not np.array_equal(renders["one"], renders["other_seed"])
+
+
+class NumpyRotations(BayesianMonteCarloIntegrator):
+    """A student's 3.3.2: the GP and the angle drawn with numpy's global generator."""
+
+    def pick_sample_set(self):
+        return self.myGP[np.random.randint(len(self.myGP))], np.random.uniform(0, 2 * math.pi)
+
+
+def test_numpys_draws_are_the_rows_own_too(tmp_path, monkeypatch, capfd, worker_first):
+    pool = make_pool(3, 8)
+    renders = {}
+    np.random.seed(123)
+    before = np.random.get_state()[1].copy()
+    for name, workers, start_method in [("one", 1, None), ("two", 2, None),
+                                        ("spawned", 2, "spawn")]:
+        with monkeypatch.context() as patch:
+            if start_method:
+                patch.setenv(START_METHOD_VARIABLE, start_method)
+            if workers > 1:
+                worker_first()
+            renders[name] = render(tmp_path, NumpyRotations(8, pool, str(tmp_path / name)),
+                                   sky_sphere_scene(16), 5, workers=workers)
+    assert "Traceback" not in capfd.readouterr().err
+    assert renders["one"].any()
+    assert np.array_equal(renders["one"], renders["two"])
+    assert np.array_equal(renders["one"], renders["spawned"])
+    # numpy's generator is given back as it was: the render drew nothing of it
+    assert np.array_equal(np.random.get_state()[1], before)
 
 
 class LocalConstant(Function):
@@ -255,7 +288,7 @@ def test_a_pool_whose_p_func_cannot_be_pickled_renders_in_one_process_saying_why
     image = render(tmp_path, BayesianMonteCarloIntegrator(8, pool, str(tmp_path / "l")),
                    sky_sphere_scene(48), 2, workers=2)
     err = capfd.readouterr().err
-    assert "rendering in one process" in err and "p_func" in err
+    assert "rendering in one process: integrator.myGP[0].p_func cannot be sent" in err
     assert "Traceback" not in err and image.any()
 
 

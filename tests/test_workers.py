@@ -430,10 +430,10 @@ def test_integrator_holding_a_lambda_renders_in_one_process_and_says_why(tmp_pat
     half = render_image(HalfNormal(str(tmp_path / "half")),
                         sphere_test_scene(width=32, height=32), workers=2)
     err = capfd.readouterr().err
-    assert err.startswith("PyRT: rendering in one process: the integrator or its scene cannot "
-                          "be sent to worker processes ("), err
-    assert err.endswith("); attributes such as lambdas, open files or generators prevent "
-                        "it\n"), err
+    assert err.startswith("PyRT: rendering in one process: integrator.scale cannot be sent "
+                          "to worker processes ("), err
+    assert err.endswith("); attributes such as lambdas, functions or classes defined inside "
+                        "a function, open files or generators prevent it\n"), err
     full = render_image(NormalIntegrator(str(tmp_path / "full")),
                         sphere_test_scene(width=32, height=32), workers=1)
     assert full.any()

@@ -43,13 +43,17 @@ class AcceleratedBMC(AcceleratedCMC):
                            for gp in self.pool]
         self.weights = [np.asarray(gp.weights, dtype=float) if own_gp(gp) else None
                         for gp in self.pool]
+        self.emitting = [any(emission) for emission in self.emissions]
 
     @classmethod
     def can_stand_in(cls, integrator) -> bool:
-        """Whether the integrator's values are those this class repeats (its sample_value
-        is the registered integrator's) and every GP has sample positions with x, y, z."""
+        """Whether the integrator's draws, light and values are those this class repeats
+        (its pick_sample_set, incoming_light and sample_value are the registered
+        integrator's) and every GP has sample positions with x, y, z."""
         registered = fused_integrator(cls.name)
-        if registered is None or type(integrator).sample_value is not registered.sample_value:
+        if registered is None or any(
+                getattr(type(integrator), method, None) is not getattr(registered, method)
+                for method in ("sample_value", "pick_sample_set", "incoming_light")):
             return False
         pool = pool_members(getattr(integrator, "myGP", None))
         return bool(pool) and all(
@@ -59,33 +63,36 @@ class AcceleratedBMC(AcceleratedCMC):
     def compute_color(self, ray):
         """BayesianMonteCarloIntegrator.compute_color(ray) (or BMCISIntegrator's)."""
         frame = self.camera_hit(ray)
-        if type(frame) is not HitFrame:
+        if type(frame) is not tuple:
             return frame
-        (nx, ny, nz), (vx, vy, vz), (ux, uy, uz) = frame.normal, frame.v, frame.u
+        frame = HitFrame(*frame)
+        normal = self.columns((frame.nx, frame.ny, frame.nz))
         draw = self.random
         which = floor(draw() * len(self.pool))  # pick_sample_set: the GP, then the angle
         alpha = 2 * pi * draw()
         c, s = cos(alpha), sin(alpha)
         x, y, z = self.directions[which]
         # rotate_around_y(alpha, omega), then center_around_normal: Normalize(v x + w y + u z)
+        # on the rows x, y, z of all samples at once, each row an operation of the plain code
         x, z = x * c + z * s, -x * s + z * c
-        wx, wy, wz = vx * x + nx * y + ux * z, vy * x + ny * y + uy * z, vz * x + nz * y + uz * z
-        inverse = 1.0 / np.sqrt(wx * wx + wy * wy + wz * wz)  # unit_components' arithmetic
-        wx, wy, wz = wx * inverse, wy * inverse, wz * inverse
-        cosines = nx * wx + ny * wy + nz * wz  # Lambertian.get_value's Dot(n, wi)
-        inverse = 1.0 / np.sqrt(wx * wx + wy * wy + wz * wz)  # closest_hit's Normalize(wi)
-        rx, ry, rz = wx * inverse, wy * inverse, wz * inverse
-        px, py, pz = frame.point
-        kd = frame.kd
+        w = (self.columns((frame.vx, frame.vy, frame.vz)) * x + normal * y
+             + self.columns((frame.ux, frame.uy, frame.uz)) * z)
+        squares = w * w
+        w = w * (1.0 / np.sqrt(squares[0] + squares[1] + squares[2]))  # unit_components'
+        products = normal * w
+        cosines = products[0] + products[1] + products[2]  # get_value's Dot(n, wi)
+        squares = w * w
+        r = w * (1.0 / np.sqrt(squares[0] + squares[1] + squares[2]))  # closest_hit's Normalize
+        px, py, pz = frame.px, frame.py, frame.pz
         tests, others = self.tests, self.others[frame.index]
-        clearance, emissions, env_map = self.own_clearance, self.emissions, self.env_map
-        trace_all = self.trace_all
-        values = np.zeros((len(cosines), 3))  # Y_j: zero unless set below
-        emitted, emitted_at = [], []  # the objects' emission of the samples that hit one
+        clearance, emitting, emissions = self.own_clearance, self.emitting, self.emissions
+        env_map, trace_all = self.env_map, self.trace_all
+        last_row, last_column, to_floor = self.last_row, self.last_column, floor
+        arc_tangent, arc_cosine, inverse_pi = atan2, acos, 1 / pi
+        emitted, emitted_at = [], []  # the emission of the samples that hit an emitter
         map_rows, map_columns, map_at = [], [], []  # the texels of those that see the map
-        for j, (wx, wy, wz, rx, ry, rz, cos_theta) in enumerate(zip(
-                wx.tolist(), wy.tolist(), wz.tolist(), rx.tolist(), ry.tolist(), rz.tolist(),
-                cosines.tolist())):
+        for j, (wx, wy, wz, rx, ry, rz, cos_theta) in enumerate(
+                np.vstack((w, r, cosines)).T.tolist()):
             if not (trace_all or cos_theta > 0.0):
                 continue  # f is BLACK: the value is zero whatever the ray meets
             # scene.closest_hit(Ray(hit_point, wi)) (AcceleratedCMC.sample_hit), written out
@@ -95,21 +102,29 @@ class AcceleratedBMC(AcceleratedCMC):
                 if t is not None and (hit_index is None or t < t_max):
                     hit_index, t_max = object_index, t
             if hit_index is not None:
-                emitted.append(emissions[hit_index])
-                emitted_at.append(j)
+                if emitting[hit_index]:  # else L is BLACK, and so is the value
+                    emitted.append(emissions[hit_index])
+                    emitted_at.append(j)
             elif env_map is not None:  # env_map.getValue(wi) (texel_of), written out
-                u = (1 + (1 / pi) * atan2(wx, -wz)) / 2
-                v = (1 / pi) * acos(min(1.0, max(-1.0, wy)))
-                map_rows.append(floor(v * self.last_row))
-                map_columns.append(floor(u * self.last_column))
+                u = (1 + inverse_pi * arc_tangent(wx, -wz)) / 2
+                v = inverse_pi * arc_cosine(wy if -1.0 <= wy <= 1.0 else min(1.0, max(-1.0, wy)))
+                map_rows.append(to_floor(v * last_row))
+                map_columns.append(to_floor(u * last_column))
                 map_at.append(j)
-        factors = self.factors(kd, cosines)
-        if emitted_at:  # L.multiply(f) in doubles
-            values[emitted_at] = np.array(emitted) * factors[emitted_at]
-        if map_at:  # L.multiply(f) of a float32 texel: float32
-            values[map_at] = self.texels[map_rows, map_columns] * factors[map_at].astype(
-                np.float32)
+        values = np.zeros((len(cosines), 3))  # Y_j: zero unless set here
+        if emitted_at or map_at:
+            factors = self.factors(frame.kd, cosines)
+            if emitted_at:  # L.multiply(f) in doubles
+                values[emitted_at] = np.array(emitted) * factors[emitted_at]
+            if map_at:  # L.multiply(f) of a float32 texel: float32
+                values[map_at] = self.texels[map_rows, map_columns] * factors[map_at].astype(
+                    np.float32)
         return self.estimate(which, values)
+
+    @staticmethod
+    def columns(vector):
+        """The (x, y, z) tuple vector as a column, to multiply a row of every sample's."""
+        return np.array(vector)[:, None]
 
     @staticmethod
     def factors(kd, cosines):
@@ -122,8 +137,9 @@ class AcceleratedBMC(AcceleratedCMC):
         weights = self.weights[which]
         if weights is not None and np.isfinite(values).all():
             # compute_integral_BMC: res = BLACK, then res + Y_i * w_i for each i
-            terms = np.concatenate((np.zeros((1, 3)), values * weights[:, None]))
-            r, g, b = np.cumsum(terms, axis=0)[-1].tolist()
+            # (0.0 + the cumulative sum: a total of -0.0, all terms being zeros, is 0.0
+            # there, as when the first term is added to BLACK's 0.0)
+            r, g, b = (np.cumsum(values * weights[:, None], axis=0)[-1] + 0.0).tolist()
             return RGBColor(r, g, b)
         gp = self.pool[which]
         gp.add_sample_val([RGBColor(*row) for row in values])

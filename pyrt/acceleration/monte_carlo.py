@@ -9,6 +9,7 @@ from PyRT_Common import (BLACK, EPSILON, HUGEVALUE, CosinePDF, RGBColor, Uniform
                          sample_set_hemisphere, unit_components)
 from PyRT_Core import UNIT_HIGH, UNIT_LOW, Lambertian
 from pyrt.acceleration.culling import scene_size
+from pyrt.acceleration.fingerprints import fused_integrator
 from pyrt.scalar_intersections import POINT_AND_NORMAL
 
 # center_around_normal's "jittered up", the vector its frame starts from
@@ -27,14 +28,22 @@ OWN_OBJECT_CLEARANCE = 1e-9
 
 
 class HitFrame(NamedTuple):
-    """Where a camera ray hits: the object's index and Lambertian kd, the hit point, its
-    normal n and center_around_normal's frame v, u about it, as (x, y, z) tuples."""
+    """Where a camera ray hits: the object's index and Lambertian kd, the hit point p, its
+    normal n and center_around_normal's frame v, u about it, component by component."""
     index: int
     kd: object
-    point: tuple
-    normal: tuple
-    v: tuple
-    u: tuple
+    px: float
+    py: float
+    pz: float
+    nx: float
+    ny: float
+    nz: float
+    vx: float
+    vy: float
+    vz: float
+    ux: float
+    uy: float
+    uz: float
 
 
 class AcceleratedCMC:
@@ -60,6 +69,7 @@ class AcceleratedCMC:
         self.emissions = [(obj.emission.r, obj.emission.g, obj.emission.b)
                           for obj in scene.object_list]
         self.env_map = env_map = scene.env_map
+        self.texels = self.last_column = self.last_row = None  # the map's, if there is one
         if env_map is not None:
             self.texels = env_map.env_map_hdr
             self.last_column, self.last_row = env_map.width - 1, env_map.height - 1
@@ -82,16 +92,20 @@ class AcceleratedCMC:
 
     @staticmethod
     def can_stand_in(integrator) -> bool:
-        """Whether the pdf is UniformPDF or CosinePDF and the scene's terms are all of one
-        kind: no environment map, or no object that emits light (see above)."""
+        """Whether the pdf is UniformPDF or CosinePDF, L_i is the registered integrator's
+        incoming_light and the scene's terms are all of one kind: no environment map, or
+        no object that emits light (see above)."""
         scene = integrator.scene
-        if type(getattr(integrator, "pdf", None)) not in FUSED_PDFS:
+        registered = fused_integrator("cmc")
+        if type(getattr(integrator, "pdf", None)) not in FUSED_PDFS or (
+                type(integrator).incoming_light is not registered.incoming_light):
             return False
         return scene.env_map is None or not any(
             obj.emission.r or obj.emission.g or obj.emission.b for obj in scene.object_list)
 
     def camera_hit(self, ray):
-        """The hit of a camera ray as a HitFrame, or the pixel's colour when the ray misses
+        """The hit of a camera ray as the tuple of a HitFrame's fields (a plain tuple costs
+        less to make, pixel after pixel), or the pixel's colour when the ray misses
         (the map, or BLACK), or when the plain code must make it (a direction that is not
         of unit length, a BRDF that is not a Lambertian)."""
         d, o = ray.d, ray.o
@@ -115,8 +129,7 @@ class AcceleratedCMC:
         ax, ay, az = JITTERED_UP
         vx, vy, vz = unit_components(ay * nz - az * ny, az * nx - ax * nz, ax * ny - ay * nx)
         ux, uy, uz = vy * nz - vz * ny, vz * nx - vx * nz, vx * ny - vy * nx
-        return HitFrame(index, brdf.kd, (px, py, pz), (nx, ny, nz), (vx, vy, vz),
-                        (ux, uy, uz))
+        return index, brdf.kd, px, py, pz, nx, ny, nz, vx, vy, vz, ux, uy, uz
 
     def sample_hit(self, point, w, cos_theta, index):
         """The index of the object that scene.closest_hit(Ray(point, w)) finds, as
@@ -138,24 +151,23 @@ class AcceleratedCMC:
     def compute_color(self, ray):
         """CMCIntegrator.compute_color(ray)."""
         frame = self.camera_hit(ray)
-        if type(frame) is not HitFrame:
+        if type(frame) is not tuple:
             return frame
-        point, (nx, ny, nz), (vx, vy, vz), (ux, uy, uz) = frame[2:]
-        kd = frame.kd
+        index, kd, px, py, pz, nx, ny, nz, vx, vy, vz, ux, uy, uz = frame
         kr, kg, kb = kd.r, kd.g, kd.b
         # sample_set_hemisphere(n, pdf): u1 then u2 for each sample, all first
         draw = self.random
         draws = [draw() for _ in range(2 * self.samples)]
         prob, cosine = UNIFORM_DENSITY, self.cosine_exponents
-        px, py, pz = point
+        uniform = cosine is None
         tests, emissions, env_map = self.tests, self.emissions, self.env_map
-        others, clearance = self.others[frame.index], self.own_clearance
+        others, clearance = self.others[index], self.own_clearance
         red = green = blue = 0.0  # the sum of the terms that are doubles
         map_rows, map_columns, map_factors, map_probs = [], [], [], []  # float32 terms
         for k in range(0, len(draws), 2):
             u1, u2 = draws[k], draws[k + 1]
             phi = 2 * pi * u1  # pdf.generate_dir(u1, u2) and pdf.get_val of it
-            if cosine is None:  # UniformPDF
+            if uniform:  # UniformPDF
                 sin_theta = sqrt(1 - u2 ** 2)
                 y = u2
             else:  # CosinePDF(e): its Dot((0, 1, 0), omega) is y exactly
@@ -192,9 +204,11 @@ class AcceleratedCMC:
                 map_rows.append(floor(v * self.last_row))
                 map_columns.append(floor(u * self.last_column))
                 map_factors.append((kr * cos_theta, kg * cos_theta, kb * cos_theta))
-                map_probs.append(prob)
-        if map_rows:
-            return self.map_color(map_rows, map_columns, map_factors, map_probs)
+                if not uniform:
+                    map_probs.append(prob)
+        if map_rows:  # the uniform density is one number for all
+            return self.map_color(map_rows, map_columns, map_factors,
+                                  UNIFORM_DENSITY if uniform else map_probs)
         return RGBColor(red / self.samples, green / self.samples, blue / self.samples)
 
     def texel_of(self, wx, wy, wz):
@@ -205,9 +219,11 @@ class AcceleratedCMC:
 
     def map_color(self, rows, columns, factors, probs):
         """The colour of a pixel whose terms are the map's (see above): the float32 sum of
-        texel * f / prob over the samples, in their order, over n_samples."""
+        texel * f / prob over the samples, in their order, over n_samples; probs is the
+        density of each sample, or one number for all."""
         terms = self.texels[rows, columns] * np.array(factors).astype(np.float32)
-        terms /= np.array(probs, dtype=np.float32)[:, None]
+        terms /= (np.float32(probs) if type(probs) is float else
+                  np.array(probs, dtype=np.float32)[:, None])
         total = np.cumsum(terms, axis=0)[-1] / np.float32(self.samples)
         return RGBColor(float(total[0]), float(total[1]), float(total[2]))
 
