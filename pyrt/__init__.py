@@ -7,6 +7,7 @@ fast, parallel and explained, and what saves and compares their images.
     explain, explain_picture  the story of one pixel, and its drawing
     scalar_intersections    the course's intersections on plain floats
     acceleration            the scene's queries and Phong, fast, for the course's loops
+    gaussian_pools          the Bayesian integrators' pools of GPs, checked and made
     sampling                a block of rows of an image, and adaptive sampling
     workers                 the worker processes that render blocks of rows
     rendering               Integrator.render()'s loop, on top of all the above

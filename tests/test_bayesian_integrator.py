@@ -265,6 +265,31 @@ def test_numpys_draws_are_the_rows_own_too(tmp_path, monkeypatch, capfd, worker_
     assert np.array_equal(np.random.get_state()[1], before)
 
 
+class CountedGP(GP):
+    """A GP that counts how often it is pickled, in this process."""
+
+    pickled = 0
+
+    def __reduce_ex__(self, protocol):
+        CountedGP.pickled += 1
+        return super().__reduce_ex__(protocol)
+
+
+def test_the_pool_reaches_the_workers_once_not_per_row(tmp_path, monkeypatch, worker_first):
+    random_module.seed(3)
+    pool = []
+    for _ in range(3):
+        gp = CountedGP(SobolevCov(), Constant(1))
+        gp.add_sample_pos(sample_set_hemisphere(8, UniformPDF())[0])
+        pool.append(gp)
+    monkeypatch.setattr(CountedGP, "pickled", 0)
+    worker_first()
+    image = render(tmp_path, BayesianMonteCarloIntegrator(8, pool, str(tmp_path / "w")),
+                   sky_sphere_scene(24), 4, workers=2)
+    assert image.any()
+    assert CountedGP.pickled == 3  # each GP once, in the integrator sent to the workers
+
+
 class LocalConstant(Function):
     """p = 1, a Function of a student's own; made inside a function below, it cannot be
     pickled for the worker processes."""

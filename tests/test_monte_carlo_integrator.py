@@ -428,7 +428,10 @@ def test_a_sample_ray_that_clearly_leaves_a_parallelogram_never_meets_it_again(
     assume(Length(target - Vector3D(*start)) > 1e-3)
     hit = wall.intersect(Ray(Vector3D(*start), Normalize(target - Vector3D(*start))))
     assume(hit.has_hit)
-    size = max(max(abs(c) for c in corner), max(abs(c) for c in target), 1e-300)
+    # the hit point o + d t carries the rounding of the ray's origin too: render()'s camera
+    # rays start at the origin, and the scene's size bounds where they hit
+    size = max(max(abs(c) for c in corner), max(abs(c) for c in target),
+               max(abs(c) for c in start), 1e-300)
     cos_theta = OWN_OBJECT_CLEARANCE * size * 1.0001
     assume(cos_theta < 1.0)
     w = leaving_direction(hit.normal, cos_theta, around)
