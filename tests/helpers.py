@@ -462,3 +462,9 @@ def with_map_and_emitter(size):
     scene = cornell_box_scene(0.75, 2, areaLS=True, width=size, height=size)
     scene.env_map = EnvironmentMap.from_texels(sky_map())
     return scene
+
+
+def seeded_render(integrator, scene, seed=1, **render_options):
+    """render_image after random.seed(seed), in one process unless workers is given."""
+    random_module.seed(seed)
+    return render_image(integrator, scene, **dict({"workers": 1}, **render_options))
