@@ -73,8 +73,8 @@ class Integrator(ABC):
         """Renders every pixel of the scene's camera and saves the image.
 
         PyRT's render_loop runs this loop once per row of the image, on every core, with
-        scene.camera a camera over the row's rays (pyrt.rows.TaskCamera: width their
-        number, height 1), and saves the image once all rows are done. render() takes:
+        scene.camera a camera over the row's rays (pyrt.rows.TaskCamera: a column of
+        them, width 1), and saves the image once all rows are done. render() takes:
 
         workers: how many processes render rows, this one included: None uses every core
             (for renders long enough to gain from them), 1 renders in this process only.

@@ -10,6 +10,7 @@ pixels adaptive sampling picks) chooses the rays and makes the row of the image 
 their colours, so that an image is the same for any number of worker processes.
 """
 import random
+from itertools import chain
 from math import sqrt
 from typing import NamedTuple
 
@@ -72,30 +73,32 @@ def loop_body(function) -> LoopBody:
 
 class TaskCamera:
     """The scene's camera as the render loop and compute_color see it during a task: a
-    camera over the task's rays, width = their number and height = 1, whose
-    get_direction(x, 0) is the direction of ray x (of the task's pixels, through their
-    centres or through the points of several samples). Its other attributes
-    (vertical_fov, aspect_ratio, ...) are the scene's camera's, which is `camera`."""
+    camera over the task's rays, a column of them, width = 1 and height = their number,
+    whose get_direction(0, y) is the direction of ray y (of the task's pixels, through
+    their centres or through the points of several samples). A column, because the
+    course's loop runs over y inside its loop over x: its inner loop then runs over all
+    the task's rays at once. Its other attributes (vertical_fov, aspect_ratio, ...) are
+    the scene's camera's, which is `camera`."""
 
     def __init__(self, camera, directions):
         self.camera = camera
         self.directions = directions
-        self.width = len(directions)
-        self.height = 1
+        self.width = 1
+        self.height = len(directions)
 
     def get_direction(self, x, y, u=0.5, v=0.5):
-        """The direction of the task's ray x (y is 0: the task is one row of rays)."""
-        return self.directions[x]
+        """The direction of the task's ray y (x is 0: the task is one column of rays)."""
+        return self.directions[y]
 
     def __getattr__(self, name):
         return getattr(self.camera, name)
 
 
 class TaskStandIns:
-    """What the scene's set_pixel and save_image are during a task: set_pixel(pixel_val, x,
-    0) keeps the colour of the task's ray x, in `colors` (the values, should pixel_val
+    """What the scene's set_pixel and save_image are during a task: set_pixel(pixel_val, 0,
+    y) keeps the colour of the task's ray y, in `colors` (the values, should pixel_val
     change later); save_image keeps the name asked for in `saved`, for the render to
-    save once every task is done. `pixel_of(x)` gives the image's pixel of ray x, for the
+    save once every task is done. `pixel_of(y)` gives the image's pixel of ray y, for the
     messages."""
 
     def __init__(self, integrator, saved):
@@ -110,19 +113,21 @@ class TaskStandIns:
 
     def set_pixel(self, pixel_val, x, y):
         try:
-            self.colors[x] = (pixel_val.r, pixel_val.g, pixel_val.b)
+            self.colors[y] = (pixel_val.r, pixel_val.g, pixel_val.b)
         except AttributeError:
-            raise not_a_color(self.integrator, pixel_val, *self.pixel_of(x)) from None
+            raise not_a_color(self.integrator, pixel_val, *self.pixel_of(y)) from None
         except IndexError:
             raise IndexError(f"Scene.set_pixel: pixel ({x}, {y}) is outside this task's "
-                             f"{len(self.colors)} rays") from None
+                             f"column of {len(self.colors)} rays") from None
 
     def save_image(self, full_filename, tonemap=True):
         self.saved.append(full_filename)
 
     def unset(self):
-        """The ray numbers of the task whose colour set_pixel was not given."""
-        return [x for x, color in enumerate(self.colors) if color is None]
+        """The first ray number of the task whose colour set_pixel was not given, or None."""
+        if None not in self.colors:
+            return None
+        return self.colors.index(None)
 
 
 STOOD_IN_FOR = ("camera", "set_pixel", "save_image")
@@ -146,9 +151,9 @@ def render_block(integrator, y0, y1, rows):
             scene.camera = TaskCamera(camera, directions)
             rows.loop(integrator)
             missing = stand_ins.unset()
-            if missing:
+            if missing is not None:
                 raise RuntimeError(f"{type(integrator).__name__}.render: the loop set no "
-                                   f"colour for pixel {pixel_of(missing[0])} (it calls "
+                                   f"colour for pixel {pixel_of(missing)} (it calls "
                                    "scene.set_pixel(color, x, y) for every pixel)")
             block.append(rows.row(integrator, camera, y, stand_ins.colors))
     finally:
@@ -156,8 +161,10 @@ def render_block(integrator, y0, y1, rows):
             vars(scene).pop(name, None)
         vars(scene).update(own)
     check_constants(f"{type(integrator).__name__}.render")
-    try:
-        return np.array(block, dtype=float).reshape(y1 - y0, -1, rows.channels)
+    try:  # an array sooner from the flat numbers than from lists of colours
+        return np.fromiter(chain.from_iterable(chain.from_iterable(block)), float,
+                           (y1 - y0) * camera.width * rows.channels).reshape(
+                               y1 - y0, camera.width, rows.channels)
     except (TypeError, ValueError):
         raise _first_bad_color(integrator, block, y0, rows.channels) from None
 

@@ -380,7 +380,7 @@ COURSE_SEAMS = REPO / "tests" / "data" / "course_figure1_seams.npz"
 def test_figure1_shows_on_its_seams_what_the_course_renders(all_figures):
     # The course's own render of Figure 1 on the seams where the walls meet (the image's
     # diagonals, 3 pixels either side), stored from ../shared/course-renders by
-    # tests/make_references.py: the course's camera arithmetic and strict tie rule give
+    # tools/make_references.py: the course's camera arithmetic and strict tie rule give
     # the same surface, and the same colour to rounding, at every one of them.
     result, out = all_figures
     assert result.returncode == 0, result.stderr

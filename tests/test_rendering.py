@@ -154,15 +154,16 @@ def test_a_colour_with_a_non_number_channel_at_the_end_of_a_row_is_found_there(t
 
 
 class SkipsTheSecondRay(PixelGrey):
-    """The course's loop under PyRT's render_loop, leaving out the second ray of each row."""
+    """The course's loop under PyRT's render_loop, leaving out the second ray of each task
+    (a row of the image, its rays a column of the task's camera)."""
 
     @render_loop
     def render(self):
         cam = self.scene.camera
-        for x in range(cam.width):
-            if x != 1:
-                ray = Ray(Vector3D(0.0, 0.0, 0.0), cam.get_direction(x, 0), INFINITY, 0.0)
-                self.scene.set_pixel(self.compute_color(ray), x, 0)
+        for y in range(cam.height):
+            if y != 1:
+                ray = Ray(Vector3D(0.0, 0.0, 0.0), cam.get_direction(0, y), INFINITY, 0.0)
+                self.scene.set_pixel(self.compute_color(ray), 0, y)
         self.scene.save_image(self.get_filename())
 
 

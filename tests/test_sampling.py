@@ -10,7 +10,7 @@ import pytest
 import pyrt.rows
 import pyrt.sampling
 from AppRenderer import sphere_test_scene
-from make_references import SAMPLED_REFERENCE, SAMPLED_REFERENCE_SIZE
+from tools.make_references import SAMPLED_REFERENCE, SAMPLED_REFERENCE_SIZE
 from helpers import (GREY, PNG_TOLERANCE, ConstantGrey, PixelGrey, StepAt, fov90_scene,
                      image_point, read_png, render_image, small_cornell_box)
 from PyRT_Common import plt
