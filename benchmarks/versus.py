@@ -43,15 +43,18 @@ def main() -> int:
     parser.add_argument("before", type=Path, help="the other checkout")
     parser.add_argument("--size", type=int, default=500)
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--workers", nargs="+", default=["1", "all"],
+                        help="the worker counts to compare ('all': every core)")
     args = parser.parse_args()
     rows = []
-    for workers in ("1", "all"):
+    for workers in args.workers:
         times = {"before": [], "now": []}
         for turn in range(args.repeats):
             progress(f"workers={workers}, turn {turn + 1} of {args.repeats}")
             for name, checkout in (("before", args.before), ("now", REPO)):
                 times[name].append(render_seconds(checkout, args.size, workers))
         before, now = sorted(times["before"]), sorted(times["now"])
+        progress(f"workers={workers}: before {before}, now {now}")
         rows.append([workers, f"{before[len(before) // 2]:.2f}", f"{now[len(now) // 2]:.2f}",
                      f"{paired_ratio(times['now'], times['before']):.3f}"])
     table = markdown_table(["workers", "before (s)", "now (s)", "now / before"], rows, 1)

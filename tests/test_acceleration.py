@@ -1,6 +1,7 @@
 """pyrt/acceleration.py: the fast queries give the plain loops' answers, bit for bit, on
 random scenes and rays; they never stand in for code of a student's own; their setup grows
 with objects x lights; and Figure 1's seams fall as in the course's own render."""
+import ast
 import math
 import sys
 
@@ -330,6 +331,23 @@ def test_a_debugger_leaves_the_plain_code_to_run(monkeypatch):
         assert not can_accelerate(scene)
     finally:
         sys.settrace(previous)
+
+
+FUNCTION = '''
+def half(x):
+    """Half of x."""
+    return x / 2  # exact in binary
+'''
+
+
+def test_a_fingerprint_is_of_the_code_alone_not_of_its_docstrings_comments_or_layout():
+    code_text = pyrt.acceleration.fingerprints.code_text
+    assert code_text(ast.parse("x = 1")) == (
+        "Module(body=[Assign(targets=[Name(id='x')], value=Constant(value=1))])")
+    text = code_text(ast.parse(FUNCTION))
+    reworded = FUNCTION.replace("Half of x.", "x halved.").replace("# exact in binary", "")
+    assert code_text(ast.parse(reworded.replace("x / 2", "x/2"))) == text
+    assert code_text(ast.parse(FUNCTION.replace("x / 2", "x * 0.5"))) != text
 
 
 def test_the_fingerprints_are_those_of_the_functions_the_fast_paths_repeat():
