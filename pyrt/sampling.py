@@ -75,12 +75,11 @@ class UniformSampling:
     adaptive = False
     tolerance = None
 
-    def __init__(self, samples, traced=True):
+    def __init__(self, samples):
         self.samples = samples
-        # PyRT traces the N > 1 rays of each pixel itself and sees their spread, unless the
-        # integrator makes its rows itself
-        self.traced = traced and samples > 1
-        self.variance = None  # the estimated squared error of each pixel and channel
+        # the estimated squared error of each pixel and channel: PyRT traces the N > 1 rays
+        # of each pixel itself and sees their spread (None: it did not)
+        self.variance = None
 
     def render(self, integrator, loop, workers, seed, progress):
         """Renders the passes into the scene's image, each by `workers` processes (None: as
@@ -227,7 +226,7 @@ class AdaptiveSampling(UniformSampling):
         super().report(integrator)
 
 
-def sampling_plan(integrator, samples, adaptive, tolerance, traced=True):
+def sampling_plan(integrator, samples, adaptive, tolerance, traced):
     """UniformSampling or AdaptiveSampling for render()'s arguments, checked; traced: PyRT
     chooses the integrator's camera rays (False: its loop renders its pixels itself)."""
     if not isinstance(adaptive, (bool, np.bool_)):
@@ -244,4 +243,4 @@ def sampling_plan(integrator, samples, adaptive, tolerance, traced=True):
               f"{samples}", file=sys.stderr)
     if adaptive and traced:
         return AdaptiveSampling(samples, float(tolerance))
-    return UniformSampling(samples, traced)
+    return UniformSampling(samples)
