@@ -17,68 +17,68 @@ from PyRT_Core import InfinitePlane, Parallelogram, Sphere
 # equal to them (tests/test_acceleration.py). One replaced, by assignment or by editing
 # its source in place, is not stood in for: the fast paths give way to the plain code.
 QUERY_FUNCTIONS = {
-    "PyRT_Core.Scene.closest_hit": "7493691f2047afb1",
-    "PyRT_Core.Scene.any_hit": "8896cbefe7669100",
-    "PyRT_Core.unit_direction": "1941c49701d86ddf",
-    "PyRT_Core.course_direction": "136ba9d995314715",
-    "PyRT_Core.plane_hit_point": "42b95a1bf25ca11c",
-    "PyRT_Core.plane_distance": "22968be12a71b664",
-    "PyRT_Common.Ray.get_hitpoint": "c3b74a33ee61fa30",
-    "PyRT_Core.Normalize": "10fd5857a74ad9a8",
-    "PyRT_Core.Length": "13c45a1d03109cb7",
-    "PyRT_Core.Dot": "351329371bd55412",
-    "PyRT_Common.unit_components": "1c61375707f3aacb",
-    "PyRT_Common.euclidean_length": "634a93cbdf618d4d",
+    "PyRT_Core.Scene.closest_hit": "58fe69200c5959a7",
+    "PyRT_Core.Scene.any_hit": "9107f59cd738ce4b",
+    "PyRT_Core.unit_direction": "4255ce1eebb36602",
+    "PyRT_Core.course_direction": "9a705656ecc58950",
+    "PyRT_Core.plane_hit_point": "2313766aec2173d5",
+    "PyRT_Core.plane_distance": "be621b7a73d0501c",
+    "PyRT_Common.Ray.get_hitpoint": "6a3b941cc734a077",
+    "PyRT_Core.Normalize": "4e0d7b65981f7e18",
+    "PyRT_Core.Length": "8b4dc7f8cfbe67d3",
+    "PyRT_Core.Dot": "b0580826f7affd8f",
+    "PyRT_Common.unit_components": "8122dd21893d8e28",
+    "PyRT_Common.euclidean_length": "17e7f9d481206d68",
 }
 INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
-    Sphere: ("PyRT_Core.Sphere.intersect", "91b2b3e298fc6f92"),
-    InfinitePlane: ("PyRT_Core.InfinitePlane.intersect", "e2a51e15014cb068"),
-    Parallelogram: ("PyRT_Core.Parallelogram.intersect", "542b6675bfdbffa1"),
+    Sphere: ("PyRT_Core.Sphere.intersect", "5bcd8d685e9a02a6"),
+    InfinitePlane: ("PyRT_Core.InfinitePlane.intersect", "84172fca9d1318f7"),
+    Parallelogram: ("PyRT_Core.Parallelogram.intersect", "615f8d9c8d40da54"),
 }
 # PhongIntegrator.compute_color and what it calls from its own module, named as that module
 # names them: looked up in the module of the Phong integrator registered (register_fused)
 PHONG_FUNCTIONS = {
-    "PhongIntegrator.compute_color": "581795d97b449003",
-    "shadow_ray": "dcb01d055d1daee9",
-    "Length": "13c45a1d03109cb7",
-    "Dot": "351329371bd55412",
+    "PhongIntegrator.compute_color": "830011959174f404",
+    "shadow_ray": "ef4f0001280c5f94",
+    "Length": "8b4dc7f8cfbe67d3",
+    "Dot": "b0580826f7affd8f",
 }
 PHONG_CALLS = {  # what PhongIntegrator.compute_color calls of the modules beneath it
-    "PyRT_Core.Primitive.get_BRDF": "4b007081b9b6210e",
-    "PyRT_Core.Lambertian.get_value": "9cabd01a25691d18",
-    "PyRT_Common.Ray.__init__": "5b4d680798accca2",
-    "PyRT_Common.Vector3D.__sub__": "0887fa4510743eee",
-    "PyRT_Common.Vector3D.__mul__": "82a9b624f897744c",
-    "PyRT_Common.Vector3D.__truediv__": "3f1d54570dad9029",
-    "PyRT_Common.RGBColor.__add__": "de6961a8acd0babe",
-    "PyRT_Common.RGBColor.__mul__": "beb3c80b147bb08d",
-    "PyRT_Common.RGBColor.__truediv__": "bd52efa803481ae7",
-    "PyRT_Common.RGBColor.multiply": "a4ddb243c868a0da",
+    "PyRT_Core.Primitive.get_BRDF": "5b51817f668590c1",
+    "PyRT_Core.Lambertian.get_value": "49c4f4efded29f98",
+    "PyRT_Common.Ray.__init__": "fe3ed9dc7a88556a",
+    "PyRT_Common.Vector3D.__sub__": "f71839dd2a08f91a",
+    "PyRT_Common.Vector3D.__mul__": "9d9c56e1bc943543",
+    "PyRT_Common.Vector3D.__truediv__": "e3c12859e6e0b56e",
+    "PyRT_Common.RGBColor.__add__": "9be1c6822a714e5c",
+    "PyRT_Common.RGBColor.__mul__": "b0e55e66354bf902",
+    "PyRT_Common.RGBColor.__truediv__": "1206d8380a5657ac",
+    "PyRT_Common.RGBColor.multiply": "f71c9682e17487cb",
 }
 # CMCIntegrator.compute_color and what it calls, as for Phong
 CMC_FUNCTIONS = {
-    "CMCIntegrator.compute_color": "f71f88d5c5489e53",
-    "sample_set_hemisphere": "67c9141ef04a6345",
-    "center_around_normal": "18cb5fb864839088",
-    "UniformPDF.get_val": "cfd6c770500a4a41",
-    "UniformPDF.generate_dir": "d29c53d615cddccc",
-    "Normalize": "10fd5857a74ad9a8",
-    "Cross": "db8c33ea3856a8aa",
+    "CMCIntegrator.compute_color": "6defde2514d1e100",
+    "sample_set_hemisphere": "8dc0c1a4b5c85e0e",
+    "center_around_normal": "02bb7e079fb76f12",
+    "UniformPDF.get_val": "d7dae845af7d6099",
+    "UniformPDF.generate_dir": "b3163f41abdf49ce",
+    "Normalize": "4e0d7b65981f7e18",
+    "Cross": "32f98e5e40676616",
 }
 CMC_CALLS = {
-    "PyRT_Core.Primitive.get_BRDF": "4b007081b9b6210e",
-    "PyRT_Core.Lambertian.get_value": "9cabd01a25691d18",
-    "PyRT_Common.EnvironmentMap.getValue": "89bb15d0572059f2",
-    "PyRT_Common.EnvironmentMap.euclideanToLatLong": "63017bbf8a97b6df",
-    "PyRT_Common.unit_components": "1c61375707f3aacb",
-    "PyRT_Common.Ray.__init__": "5b4d680798accca2",
-    "PyRT_Common.Vector3D.__init__": "8c8e2974e3f03ed6",
-    "PyRT_Common.Vector3D.__add__": "a630d5ec25dd1d66",
-    "PyRT_Common.Vector3D.__mul__": "82a9b624f897744c",
-    "PyRT_Common.RGBColor.__init__": "5f5df1a5f5cbfc06",
-    "PyRT_Common.RGBColor.__add__": "de6961a8acd0babe",
-    "PyRT_Common.RGBColor.__truediv__": "bd52efa803481ae7",
-    "PyRT_Common.RGBColor.multiply": "a4ddb243c868a0da",
+    "PyRT_Core.Primitive.get_BRDF": "5b51817f668590c1",
+    "PyRT_Core.Lambertian.get_value": "49c4f4efded29f98",
+    "PyRT_Common.EnvironmentMap.getValue": "8519365ebbec49ad",
+    "PyRT_Common.EnvironmentMap.euclideanToLatLong": "f4b3cd7d60f135ec",
+    "PyRT_Common.unit_components": "8122dd21893d8e28",
+    "PyRT_Common.Ray.__init__": "fe3ed9dc7a88556a",
+    "PyRT_Common.Vector3D.__init__": "d210fb32c4d2ffc0",
+    "PyRT_Common.Vector3D.__add__": "0c58ebe2d5e388e3",
+    "PyRT_Common.Vector3D.__mul__": "9d9c56e1bc943543",
+    "PyRT_Common.RGBColor.__init__": "d58fa7e4e3e1be24",
+    "PyRT_Common.RGBColor.__add__": "9be1c6822a714e5c",
+    "PyRT_Common.RGBColor.__truediv__": "1206d8380a5657ac",
+    "PyRT_Common.RGBColor.multiply": "f71c9682e17487cb",
 }
 # The integrators whose compute_color a fused version repeats, by name: the functions of
 # their own module (looked up there) and of the modules beneath it
@@ -124,10 +124,9 @@ def code_text(node) -> str:
         return "[" + ", ".join(code_text(item) for item in _without_docstring(node)) + "]"
     if not isinstance(node, ast.AST):
         return repr(node)
-    if isinstance(node, ast.expr_context):  # Load, Store, Del: the place says which
-        return ""
+    # a name's context (Load, Store, Del) left out too: its place in the tree says which
     fields = [f"{name}={code_text(value)}" for name, value in ast.iter_fields(node)
-              if value is not None and value != []]
+              if value is not None and value != [] and not isinstance(value, ast.expr_context)]
     return f"{type(node).__name__}({', '.join(fields)})"
 
 
