@@ -31,7 +31,7 @@ import numpy as np
 
 from PyRT_Common import is_number
 from pyrt.images import opencv_problem
-from pyrt.rows import loop_body
+from pyrt.rows import TaskStandIns, loop_body
 from pyrt.sampling import ADAPTIVE_TOLERANCE, sampling_plan
 
 
@@ -50,7 +50,8 @@ def render_loop(body):
         _render(self, sampling, lambda seed: sampling.render(self, loop, workers, seed,
                                                             progress))
 
-    return _documented(render, body, loop)
+    render.loop = loop  # the loop, undecorated (a pyrt.rows.LoopBody)
+    return _documented(render, body)
 
 
 def image_loop(body):
@@ -65,15 +66,13 @@ def image_loop(body):
                                    traced=False)
         _render(self, sampling, lambda seed: _run_once(self, body))
 
-    return _documented(render, body, loop_body(body))
+    return _documented(render, body)
 
 
-def _documented(render, body, loop):
-    """render named and documented as body, with its own signature (PyRT's arguments);
-    render.loop is the loop, undecorated (a pyrt.rows.LoopBody)."""
+def _documented(render, body):
+    """render named and documented as body, with its own signature (PyRT's arguments)."""
     functools.update_wrapper(render, body, updated=())
     del render.__wrapped__  # inspect.signature shows render's arguments, not body's
-    render.loop = loop
     return render
 
 
@@ -82,7 +81,7 @@ def _run_once(integrator, body):
     scene = integrator.scene
     saved = []
     own = vars(scene).get("save_image")
-    scene.save_image = lambda full_filename, tonemap=True: saved.append(full_filename)
+    scene.save_image = TaskStandIns(integrator, saved).save_image
     try:
         body(integrator)
     finally:
