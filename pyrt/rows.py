@@ -155,16 +155,16 @@ def render_block(integrator, y0, y1, rows):
                 raise RuntimeError(f"{type(integrator).__name__}.render: the loop set no "
                                    f"colour for pixel {pixel_of(missing)} (it calls "
                                    "scene.set_pixel(color, x, y) for every pixel)")
-            block.append(rows.row(integrator, camera, y, stand_ins.colors))
+            # flat at once: a block's colours kept as tuples would slow every row after
+            block.append(list(chain.from_iterable(rows.row(integrator, camera, y,
+                                                           stand_ins.colors))))
     finally:
         for name in STOOD_IN_FOR:
             vars(scene).pop(name, None)
         vars(scene).update(own)
     check_constants(f"{type(integrator).__name__}.render")
-    try:  # an array sooner from the flat numbers than from lists of colours
-        return np.fromiter(chain.from_iterable(chain.from_iterable(block)), float,
-                           (y1 - y0) * camera.width * rows.channels).reshape(
-                               y1 - y0, camera.width, rows.channels)
+    try:
+        return np.array(block, dtype=float).reshape(y1 - y0, camera.width, rows.channels)
     except (TypeError, ValueError):
         raise _first_bad_color(integrator, block, y0, rows.channels) from None
 
@@ -178,11 +178,13 @@ def not_a_color(integrator, color, x, y):
 
 
 def _first_bad_color(integrator, rows, y0, channels):
-    """The TypeError for the first pixel whose channels are not all numbers."""
+    """The TypeError for the first pixel whose channels are not all numbers (rows: flat,
+    `channels` numbers a pixel)."""
     for y, row in enumerate(rows, y0):
-        for x, color in enumerate(row):
-            if not all(isinstance(c, (int, float, np.number)) for c in color[:3]):
-                return not_a_color(integrator, RGBColor(*color[:3]), x, y)
+        for x in range(len(row) // channels):
+            color = row[channels * x:channels * x + 3]
+            if not all(isinstance(c, (int, float, np.number)) for c in color):
+                return not_a_color(integrator, RGBColor(*color), x, y)
     return ValueError("render: the colours of the image do not form an array")
 
 
