@@ -2,7 +2,7 @@
 
 A plain run of the tests, CI's included, draws the same property-test examples every
 time (the profile "repeatable", derandomized): it cannot fail by chance.
-tests/hunt_flaky.py sets PYRT_HYPOTHESIS_PROFILE=hunt, which draws new examples from each
+tools/hunt_flaky.py sets PYRT_HYPOTHESIS_PROFILE=hunt, which draws new examples from each
 run's --hypothesis-seed."""
 import os
 
