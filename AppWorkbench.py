@@ -1,11 +1,15 @@
-"""The Monte Carlo workbench of Practice 2, Part I: estimates an integral over the
-hemisphere many times with classic Monte Carlo for each number of samples N, and plots the
-average absolute error against N, beside the error that theory predicts.
+"""The Monte Carlo workbench of Practices 2, 3 and 4: estimates an integral over the
+hemisphere many times for each number of samples N, and plots the average absolute error
+against N, beside the error that theory predicts (classic Monte Carlo) or that the Gaussian
+process believes (Bayesian Monte Carlo).
 
 Run it with no arguments (the play button of VSCode) for Assignment 2.1, the integral of
 cos over the hemisphere (pi), with uniform sampling (MC) and cosine sampling (MC IS);
+`--practice 3` for Assignment 3.2 (MC against BMC on the same integral), `--practice 4`
+for Practice 4 (MC, MC IS, BMC and BMC IS on the integral of cos^3 times cos, 2 pi/5).
 `python AppWorkbench.py --help` lists the options. The plot is saved as
-out/workbench_error.png next to this script and shown in a window when there is a screen.
+out/workbench_error.png (out/workbench_error_practice3.png, ...) next to this script and
+shown in a window when there is a screen.
 """
 import argparse
 import math
@@ -13,20 +17,33 @@ import os
 import sys
 import time
 from pathlib import Path
-from typing import NamedTuple
+from typing import NamedTuple, Optional
 
+# FRAMEWORK ONLY BEGIN
+# The GPs' matrices are small (N up to a few hundred): the linear algebra inverts them
+# fastest on one thread, where threads that wait for a busy core make each inverse several
+# times slower. Set before numpy is imported, unless the environment says otherwise.
+for _threads in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_threads, "1")
+# FRAMEWORK ONLY END
 import matplotlib
 from matplotlib.ticker import LogLocator, NullFormatter, NullLocator, StrMethodFormatter
 from tqdm import tqdm
 
 from PyRT_Common import *
+from GaussianProcess import *
 # The module random, for random.seed. It comes after the star import, which brings the
 # function random() under the same name.
 import random
 
 # out/ next to this script, wherever it is run from
 DIRECTORY = Path(__file__).resolve().parent / "out"
+# The plots: Practice 2's workbench_error.png, Practice 3's workbench_error_practice3.png
+# and workbench_weights_practice3.png, and so on
 FILENAME = "workbench_error.png"
+WEIGHTS_STEM = "workbench_weights"
+# --weights shows a GP of the number of samples closest to this (Practice 3's renders' 40)
+WEIGHTS_SAMPLES = 40
 
 
 class Integrand(NamedTuple):
@@ -39,11 +56,20 @@ class Integrand(NamedTuple):
 
 class Method(NamedTuple):
     """A Monte Carlo method of the plot: the course's label and marker, and the pdf it
-    samples directions from (with its name on the command line)."""
+    samples directions from (with its name on the command line). A Bayesian Monte Carlo
+    method also has p_func, the known part p of the integrand f p that goes into the GP's
+    z, and the Functions whose product is f, the GP's observations (None: the whole
+    integrand)."""
     label: str
     marker: str
     pdf: PDF
     pdf_name: str
+    p_func: Optional[object] = None
+    value_functions: Optional[list] = None
+
+    @property
+    def is_bmc(self) -> bool:
+        return self.p_func is not None
 
 
 # The integrands are of the form L_i * BRDF * cos; their constants are 1, so each integral is
@@ -59,6 +85,10 @@ INTEGRANDS = {
     "constant": Integrand([Constant(1)], Constant(1).get_integral(),
                           r"$\int_{H^2} \, 1 \, d\omega = 2\pi$"),
 }
+# Practice 4: f p with f = cos^3 and the cosine p known, the integral of cos^4
+PRACTICE4_INTEGRAND = Integrand([CosineLobe(3), CosineLobe(1)], CosineLobe(4).get_integral(),
+                                r"$\int_{H^2} \, \cos^3\theta \, \cos\theta \, d\omega "
+                                r"= 2\pi/5$")
 PDFS = {"uniform": UniformPDF(), "cos": CosinePDF(1), "cos4": CosinePDF(4)}
 # MC IS always samples the cosine: for the integrand cos it has zero variance
 IMPORTANCE_PDF = "cos"
@@ -98,6 +128,43 @@ def compute_estimate_cmc(sample_prob_, sample_values_):
     return total / len(sample_values_)
 
 
+def compute_estimate_bmc(gp, sample_pos_, sample_values_):
+    """The Bayesian Monte Carlo estimate sum over i of w_i Y_i of the red channel, from a
+    fresh GP, the sample directions and the values Y of f there."""
+    # ASSIGNMENT 3.2 BEGIN
+    gp.add_sample_pos(sample_pos_)
+    gp.add_sample_val(sample_values_)
+    return gp.compute_integral_BMC().r
+    # ASSIGNMENT 3.2 END
+
+
+def practice3_methods(mc_pdf_name: str):
+    """Assignment 3.2's methods: classic Monte Carlo (samples from the pdf named
+    mc_pdf_name) against Bayesian Monte Carlo with uniform samples and p = 1, the GP
+    modelling the whole integrand."""
+    methods = [Method("MC", "o", PDFS[mc_pdf_name], mc_pdf_name)]
+    # ASSIGNMENT 3.2 BEGIN
+    methods.append(Method("BMC", "x", UniformPDF(), "uniform", p_func=Constant(1)))
+    # ASSIGNMENT 3.2 END
+    return methods
+
+
+def practice4_methods():
+    """Practice 4's methods on the integral of f p, f = cos^3 and p = cos: MC (uniform),
+    MC IS (samples from the cosine), BMC (uniform, p = 1, the GP modelling cos^4) and
+    BMC IS (samples from the cosine, p = cos in z, the GP modelling f = cos^3 alone)."""
+    methods = [Method("MC", "o", UniformPDF(), "uniform")]
+    # ASSIGNMENT 4.1 BEGIN
+    methods.append(Method("MC IS", "v", CosinePDF(1), "cos"))
+    # ASSIGNMENT 4.1 END
+    methods.append(Method("BMC", "x", UniformPDF(), "uniform", p_func=Constant(1)))
+    # ASSIGNMENT 4.2 BEGIN
+    methods.append(Method("BMC IS", "1", CosinePDF(1), "cos", p_func=CosineLobe(1),
+                          value_functions=[CosineLobe(3)]))
+    # ASSIGNMENT 4.2 END
+    return methods
+
+
 # ------------------------------------------------------------------------------------------
 # The experiment
 # ------------------------------------------------------------------------------------------
@@ -113,15 +180,61 @@ def absolute_errors(integrand: Integrand, pdf: PDF, ns: int, n_estimates: int) -
     return errors
 
 
+class BMCErrors(NamedTuple):
+    """The absolute errors of Bayesian Monte Carlo estimates, and for each the error its GP
+    believes in, sqrt(2/pi) sqrt(compute_variance_BMC()) (the average distance of a normal
+    variable from its mean)."""
+    errors: np.ndarray
+    believed: np.ndarray
+
+
+def bmc_absolute_errors(integrand: Integrand, method: Method, ns: int,
+                        n_estimates: int) -> BMCErrors:
+    """The absolute errors |estimate - ground truth| of n_estimates Bayesian Monte Carlo
+    estimates of ns samples drawn from method.pdf each, every one with a fresh sample set
+    and a fresh GP (the Sobolev kernel, p = method.p_func), and the errors the GPs
+    believe in."""
+    functions = method.value_functions or integrand.functions
+    errors, believed = np.zeros(n_estimates), np.zeros(n_estimates)
+    for i in range(n_estimates):
+        sample_set, _ = sample_set_hemisphere(ns, method.pdf)
+        gp = GP(SobolevCov(), method.p_func)
+        estimate = compute_estimate_bmc(gp, sample_set, collect_samples(functions, sample_set))
+        errors[i] = abs(estimate - integrand.ground_truth)
+        believed[i] = math.sqrt(2 / pi) * math.sqrt(gp.compute_variance_BMC())
+    return BMCErrors(errors, believed)
+
+
+class Measured(NamedTuple):
+    """The matrices (sample counts x methods) of the average absolute error of each method
+    and of the average error its GPs believe in (0 for classic Monte Carlo)."""
+    results: np.ndarray
+    believed: np.ndarray
+
+
+def measure(integrand: Integrand, methods: list, ns_vector, n_estimates: int,
+            bmc_estimates: int, progress: bool = True) -> Measured:
+    """The average absolute errors of n_estimates estimates of each classic method, and of
+    bmc_estimates of each Bayesian one, with each number of samples of ns_vector."""
+    shape = (len(ns_vector), len(methods))
+    results, believed = np.zeros(shape), np.zeros(shape)
+    for k, ns in enumerate(tqdm(ns_vector, desc="Sample counts", disable=not progress)):
+        for m, method in enumerate(methods):
+            if method.is_bmc:
+                bmc = bmc_absolute_errors(integrand, method, ns, bmc_estimates)
+                results[k, m], believed[k, m] = np.mean(bmc.errors), np.mean(bmc.believed)
+            else:
+                results[k, m] = np.mean(absolute_errors(integrand, method.pdf, ns,
+                                                        n_estimates))
+    return Measured(results, believed)
+
+
 def average_errors(integrand: Integrand, methods: list, ns_vector, n_estimates: int,
                    progress: bool = True) -> np.ndarray:
     """The matrix results (sample counts x methods): the average absolute error of
     n_estimates estimates of each method with each number of samples of ns_vector."""
-    results = np.zeros((len(ns_vector), len(methods)))
-    for k, ns in enumerate(tqdm(ns_vector, desc="Sample counts", disable=not progress)):
-        for m, method in enumerate(methods):
-            results[k, m] = np.mean(absolute_errors(integrand, method.pdf, ns, n_estimates))
-    return results
+    return measure(integrand, methods, ns_vector, n_estimates, n_estimates,
+                   progress).results
 
 
 # ------------------------------------------------------------------------------------------
@@ -161,9 +274,14 @@ def expected_error(sigma: float, ns):
     return math.sqrt(2 / pi) * sigma / np.sqrt(ns)
 
 
-def describe(method: Method, sigma: float, errors: np.ndarray) -> str:
+def describe(method: Method, sigma: Optional[float], errors: np.ndarray) -> str:
     """One line on what theory says of a method's error, from the sigma of its f/p and its
-    measured average errors."""
+    measured average errors (sigma None: a Bayesian method, which theory does not bound)."""
+    if method.is_bmc:
+        return (f"{method.label}: {method.pdf_name} samples, a GP of SobolevCov() with p = "
+                f"{p_name(method.p_func)}; its belief sqrt(2/pi) sqrt(compute_variance_BMC()) "
+                f"is the error the GP expects if f were drawn from its prior: a belief, "
+                f"not a bound")
     if sigma == 0.0:
         return (f"{method.label}: zero variance, every estimate is exact (error 0 at every N; "
                 f"the largest measured is {errors.max():.1e}, rounding)")
@@ -175,14 +293,30 @@ def describe(method: Method, sigma: float, errors: np.ndarray) -> str:
             f"average error in theory sqrt(2/pi) sigma / sqrt(N)")
 
 
-def error_table(ns_vector, results: np.ndarray, methods: list, sigmas: list) -> str:
-    """The measured average errors and the theory's, one row per number of samples."""
-    header = f"{'N':>5}" + "".join(f"{method.label:>10}{'theory':>10}" for method in methods)
+def p_name(p_func) -> str:
+    """How the workbench writes a GP's p: 1, cos, cos^e, or the Function's class."""
+    if isinstance(p_func, CosineLobe):
+        return "cos" if p_func.exp == 1 else f"cos^{p_func.exp:g}"
+    if isinstance(p_func, Constant):
+        return f"{p_func.const_value:g}"
+    return type(p_func).__name__
+
+
+def error_table(ns_vector, results: np.ndarray, methods: list, sigmas: list,
+                believed: Optional[np.ndarray] = None) -> str:
+    """The measured average errors and the theory's (classic Monte Carlo) or the GPs'
+    belief (Bayesian Monte Carlo), one row per number of samples."""
+    header = f"{'N':>5}" + "".join(
+        f"{method.label:>10}{'belief' if method.is_bmc else 'theory':>10}"
+        for method in methods)
     rows = [header]
     for k, ns in enumerate(ns_vector):
         row = f"{ns:>5}"
-        for m, sigma in enumerate(sigmas):
-            theory = "-" if math.isinf(sigma) else f"{expected_error(sigma, ns):.4f}"
+        for m, (method, sigma) in enumerate(zip(methods, sigmas)):
+            if method.is_bmc:
+                theory = f"{believed[k, m]:.4f}"
+            else:
+                theory = "-" if math.isinf(sigma) else f"{expected_error(sigma, ns):.4f}"
             row += f"{results[k, m]:>10.4f}{theory:>10}"
         rows.append(row)
     return "\n".join(rows)
@@ -192,15 +326,26 @@ def error_table(ns_vector, results: np.ndarray, methods: list, sigmas: list) -> 
 # The plot
 # ------------------------------------------------------------------------------------------
 def plot_errors(ns_vector, results: np.ndarray, methods: list, sigmas: list,
-                integrand: Integrand, n_estimates: int):
+                integrand: Integrand, n_estimates: int, believed: Optional[np.ndarray] = None,
+                bmc_estimates: Optional[int] = None):
     """The figure of the average absolute error against N on log-log axes: for each method
-    its measured error (solid, with the course's marker) and the theory's (dashed). A log
-    scale has no 0, so a method of zero variance is named in the legend and not drawn; when
-    every method has zero variance the y axis is linear and shows their errors at 0."""
-    figure, axes = plt.subplots(figsize=(7.5, 5.5))
-    log_scale = any(sigma != 0.0 for sigma in sigmas)
+    its measured error (solid, with the course's marker) and the theory's or, for a
+    Bayesian method, its GPs' belief (dashed). A log scale has no 0, so a method of zero
+    variance is named in the legend and not drawn; when every method has zero variance the
+    y axis is linear and shows their errors at 0."""
+    bayesian = any(method.is_bmc for method in methods)
+    # Bayesian methods add beliefs to the legend, which then stands beside the axes
+    figure, axes = plt.subplots(figsize=(11.0, 5.5) if bayesian else (7.5, 5.5))
+    log_scale = any(method.is_bmc or sigma != 0.0 for method, sigma in zip(methods, sigmas))
     for m, (method, sigma) in enumerate(zip(methods, sigmas)):
         colour = f"C{m}"
+        if method.is_bmc:
+            axes.plot(ns_vector, results[:, m], color=colour, marker=method.marker,
+                      label=method.label)
+            axes.plot(ns_vector, believed[:, m], color=colour, linestyle="--",
+                      label=rf"{method.label} belief: $\sqrt{{2/\pi}}\,\sqrt{{Var}}$ "
+                            "(not a bound)")
+            continue
         if sigma == 0.0:
             label = f"{method.label}: zero variance, error 0 at every N"
             if log_scale:
@@ -229,10 +374,29 @@ def plot_errors(ns_vector, results: np.ndarray, methods: list, sigmas: list,
         axes.set_ylim(-1.0, 1.0)
     axes.set_xlabel("number of samples N")
     axes.set_ylabel("average absolute error")
-    axes.set_title(f"Average absolute error of {n_estimates} estimates of "
-                   f"{integrand.title}")
     axes.grid(True, which="both", alpha=0.3)
-    axes.legend()
+    if bayesian:
+        axes.set_title(f"Average absolute error of {n_estimates} MC and {bmc_estimates} "
+                       f"BMC estimates of\n{integrand.title}")
+        axes.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")
+    else:
+        axes.set_title(f"Average absolute error of {n_estimates} estimates of "
+                       f"{integrand.title}")
+        axes.legend()
+    figure.tight_layout()
+    return figure
+
+
+def plot_weights(method: Method, ns: int):
+    """The figure of visualize_sample_set for one GP of a Bayesian method: ns directions
+    drawn from its pdf, coloured by their weights w_i divided by the weights' sum (the
+    colours run from 0.7/n to 1.3/n, around the 1/n of equal weights)."""
+    sample_set, _ = sample_set_hemisphere(ns, method.pdf)
+    gp = GP(SobolevCov(), method.p_func)
+    gp.add_sample_pos(sample_set)
+    figure = visualize_sample_set(sample_set, gp.weights / np.sum(gp.weights), show=False)
+    figure.axes[0].set_title(f"{method.label}: the weights of a GP of {ns} samples "
+                             f"({method.pdf_name}), over their sum", pad=28)
     figure.tight_layout()
     return figure
 
@@ -288,18 +452,23 @@ def parse_args(argv):
     """The options of the command line."""
     parser = OneLineParser(
         prog="AppWorkbench.py",
-        description="Estimate an integral over the hemisphere with classic Monte Carlo, "
-                    "many times for each number of samples N, and plot the average "
-                    "absolute error against N beside theory's. With no options: "
-                    "Assignment 2.1, the integral of cos (pi), sampled uniformly (MC) and "
-                    "by the cosine (MC IS).")
+        description="Estimate an integral over the hemisphere with classic and Bayesian "
+                    "Monte Carlo, many times for each number of samples N, and plot the "
+                    "average absolute error against N beside theory's (or the GP's "
+                    "belief). With no options: Assignment 2.1, the integral of cos (pi), "
+                    "sampled uniformly (MC) and by the cosine (MC IS).")
+    parser.add_argument("--practice", type=int, choices=(2, 3, 4), default=2,
+                        help="2: MC and MC IS (Assignment 2.1); 3: MC against BMC with "
+                             "p = 1 (Assignment 3.2); 4: MC, MC IS, BMC and BMC IS on the "
+                             "integral of cos^3 times cos, 2 pi / 5 (default: 2)")
     parser.add_argument("--integrand", choices=INTEGRANDS, default="cos",
-                        help="cos: L_i * BRDF * cos with L_i = kd = 1, pi (Assignment 2.1); "
-                             "cos4: L_i * cos^4, 2 pi / 5 (the course's figure); constant: "
-                             "1, 2 pi (default: cos)")
+                        help="Practices 2 and 3: cos: L_i * BRDF * cos with L_i = kd = 1, "
+                             "pi (Assignment 2.1); cos4: L_i * cos^4, 2 pi / 5 (the "
+                             "course's figure); constant: 1, 2 pi (default: cos)")
     parser.add_argument("--pdf", choices=PDFS, default="uniform",
-                        help="the pdf of the MC curve: uniform, cos (CosinePDF(1)) or cos4 "
-                             "(CosinePDF(4)); MC IS samples CosinePDF(1) (default: uniform)")
+                        help="Practices 2 and 3: the pdf of the MC curve: uniform, cos "
+                             "(CosinePDF(1)) or cos4 (CosinePDF(4)); MC IS samples "
+                             "CosinePDF(1) (default: uniform)")
     parser.add_argument("--ns-min", type=count_arg, default=20,
                         help="the smallest number of samples (default 20)")
     parser.add_argument("--ns-max", type=count_arg, default=101,
@@ -308,6 +477,13 @@ def parse_args(argv):
                         help="the step between numbers of samples (default 20)")
     parser.add_argument("--estimates", type=count_arg, default=1000,
                         help="estimates averaged for each number of samples (default 1000)")
+    parser.add_argument("--bmc-estimates", type=count_arg, default=100,
+                        help="BMC estimates averaged for each number of samples, each with "
+                             "a fresh sample set and GP (default 100)")
+    parser.add_argument("--weights", action="store_true",
+                        help="Practices 3 and 4: also plot the weights of one GP of the "
+                             f"N closest to {WEIGHTS_SAMPLES} (visualize_sample_set), as "
+                             f"{WEIGHTS_STEM}_practice<3 or 4>.png")
     parser.add_argument("--seed", type=int, default=0,
                         help="the seed of Python's random numbers (default 0)")
     parser.add_argument("--out", type=Path, default=DIRECTORY,
@@ -315,6 +491,12 @@ def parse_args(argv):
     parser.add_argument("--no-window", action="store_true",
                         help="save the plot without showing it")
     args = parser.parse_args(argv)
+    if args.practice == 4 and (args.integrand, args.pdf) != ("cos", "uniform"):
+        parser.error("argument --practice: Practice 4 has the course's integrand and pdfs "
+                     "(cos^3 times cos; uniform and cosine samples): leave out --integrand "
+                     "and --pdf")
+    if args.weights and args.practice == 2:
+        parser.error("argument --weights: the weights are a GP's; use --practice 3 or 4")
     if args.ns_min >= args.ns_max:
         parser.error(f"argument --ns-max: the numbers of samples run from --ns-min "
                      f"{args.ns_min} to below --ns-max, which must be larger, got "
@@ -341,33 +523,50 @@ def main(argv=None) -> int:
     integrand = INTEGRANDS[args.integrand]
     methods = [Method("MC", "o", PDFS[args.pdf], args.pdf),
                Method("MC IS", "v", PDFS[IMPORTANCE_PDF], IMPORTANCE_PDF)]
+    if args.practice == 3:
+        methods = practice3_methods(args.pdf)
+    elif args.practice == 4:
+        integrand, methods = PRACTICE4_INTEGRAND, practice4_methods()
     ns_min, ns_max, ns_step = args.ns_min, args.ns_max, args.ns_step
     ns_vector = np.arange(start=ns_min, stop=ns_max, step=ns_step)
     n_estimates = args.estimates
     print("Ground truth: " + str(integrand.ground_truth))
 
     start = time.perf_counter()
-    results = average_errors(integrand, methods, ns_vector, n_estimates)
-    print(f"{n_estimates} estimates per number of samples in "
-          f"{time.perf_counter() - start:.1f} s")
-    sigmas = [standard_deviation(integrand.functions, method.pdf) for method in methods]
+    measured = measure(integrand, methods, ns_vector, n_estimates, args.bmc_estimates)
+    results = measured.results
+    counts = f"{n_estimates}"
+    if args.practice != 2:
+        counts = f"{n_estimates} MC and {args.bmc_estimates} BMC"
+    print(f"{counts} estimates per number of samples in {time.perf_counter() - start:.1f} s")
+    sigmas = [None if method.is_bmc else standard_deviation(integrand.functions, method.pdf)
+              for method in methods]
     for m, (method, sigma) in enumerate(zip(methods, sigmas)):
         print(describe(method, sigma, results[:, m]))
-    print(error_table(ns_vector, results, methods, sigmas))
+    print(error_table(ns_vector, results, methods, sigmas, measured.believed))
 
-    figure = plot_errors(ns_vector, results, methods, sigmas, integrand, n_estimates)
-    path = args.out / FILENAME
-    try:
-        figure.savefig(path, dpi=100)
-    except OSError as error:
-        return refuse(f"cannot save the plot as {path}: {error.strerror}")
-    print(f"Saved {path}")
+    suffix = "" if args.practice == 2 else f"_practice{args.practice}"
+    figures = {FILENAME.replace(".png", suffix + ".png"): plot_errors(
+        ns_vector, results, methods, sigmas, integrand, n_estimates, measured.believed,
+        args.bmc_estimates)}
+    if args.weights:
+        bmc = [method for method in methods if method.is_bmc][-1]
+        ns = int(ns_vector[np.argmin(np.abs(ns_vector - WEIGHTS_SAMPLES))])
+        figures[f"{WEIGHTS_STEM}{suffix}.png"] = plot_weights(bmc, ns)
+    for name, figure in figures.items():
+        path = args.out / name
+        try:
+            figure.savefig(path, dpi=100)
+        except OSError as error:
+            return refuse(f"cannot save the plot as {path}: {error.strerror}")
+        print(f"Saved {path}")
     if not args.no_window:
         if has_screen():
             plt.show()
         else:
             print("No screen: the plot is saved, not shown.")
-    plt.close(figure)
+    for figure in figures.values():
+        plt.close(figure)
     return 0
 
 

@@ -59,12 +59,19 @@ def render(self):
     self.scene.save_image(self.get_filename())
 '''
 # A body stub: the course's comment, then what the method does until the student writes it
-BODY_STUBS = {"any_hit": "return False", "compute_color": "pass"}
+BODY_STUBS = {"any_hit": "return False", "compute_color": "pass", "compute_inv_Q": "pass",
+              "compute_z": "pass", "compute_integral_BMC": "pass",
+              "compute_estimate_bmc": "pass", "practice3_methods": "pass",
+              "practice4_methods": "pass"}
 # Where each step's blocks may stand: "class" for whole methods, else the methods whose
 # body they are
 STEP_PLACES = {"1.1-1.2": {"class"}, "1.2": {"any_hit", "compute_color"},
                "1.3": {"compute_color"}, "1.4": {"compute_color"},
-               "2.3": {"compute_color"}}  # Practice 2's CMCIntegrator, a stub in Practice 1
+               "2.3": {"compute_color"},  # Practice 2's CMCIntegrator, a stub in Practice 1
+               # Practices 3 and 4: GaussianProcess.py's stubs, AppWorkbench.py's BMC
+               "3.1": {"compute_inv_Q", "compute_z", "compute_integral_BMC"},
+               "3.2": {"compute_estimate_bmc", "practice3_methods"},
+               "4.1": {"practice4_methods"}, "4.2": {"practice4_methods"}}
 FRAMEWORK_ONLY = "FRAMEWORK ONLY"
 
 MARKER = re.compile(r"(?P<indent>[ ]*)# (?P<kind>ASSIGNMENT (?P<step>\S+)|FRAMEWORK ONLY) "

@@ -211,8 +211,9 @@ def test_the_same_seed_gives_the_same_errors_and_another_seed_others(tmp_path, c
 def test_help_lists_the_options(tmp_path):
     result = run_python([SCRIPT, "--help"], cwd=tmp_path)
     assert result.returncode == 0
-    for option in ("--integrand", "--pdf", "--ns-min", "--ns-max", "--ns-step",
-                   "--estimates", "--seed", "--out", "--no-window"):
+    for option in ("--practice", "--integrand", "--pdf", "--ns-min", "--ns-max", "--ns-step",
+                   "--estimates", "--bmc-estimates", "--weights", "--seed", "--out",
+                   "--no-window"):
         assert option in result.stdout
     assert list(tmp_path.iterdir()) == []
 
