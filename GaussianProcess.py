@@ -20,7 +20,8 @@ from PyRT_Common import *
 from PyRT_Common import __all__ as _common_names
 # FRAMEWORK ONLY BEGIN
 from pyrt.gp_inputs import (check_cov_func, check_noise, check_p_func,
-                            check_positive_number, check_values, positions_array)
+                            check_positive_number, check_values, check_z_estimate,
+                            positions_array)
 from pyrt.gp_integrals import course_z, exact_z, k_bar
 from pyrt.gp_kernels import RadialProfile, covariance_matrix
 from pyrt.gp_solves import check_covariance, posterior_variance, refined_weights
@@ -120,10 +121,8 @@ class GP:
         check_cov_func(cov_func)
         check_p_func(p_func)
         check_noise("GP", noise_)
-        if z_estimate not in ("exact", "course"):
-            raise ValueError(f"GP: z_estimate must be 'exact' (quadrature) or 'course' (the "
-                             f"course's 50,000-sample Monte Carlo), got {z_estimate!r}")
-        self.z_estimate = z_estimate
+        check_z_estimate(z_estimate)
+        self.z_estimate = z_estimate  # may be set later too, before add_sample_pos
         self.Q = None  # K + noise^2 I, kept to refine the weights
         # FRAMEWORK ONLY END
         self.cov_func = cov_func
@@ -180,6 +179,7 @@ class GP:
     def compute_z(self):
         # FRAMEWORK ONLY BEGIN
         positions = positions_array(self.samples_pos)
+        check_z_estimate(self.z_estimate)
         if self.z_estimate == "exact":
             return exact_z(self.cov_func, self.p_func, positions)
         z_vec = course_z(self.cov_func, self.p_func, positions)  # None: a kernel of one's own

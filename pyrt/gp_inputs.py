@@ -31,6 +31,17 @@ def check_noise(where: str, noise):
                          f"{noise!r}")
 
 
+Z_ESTIMATES = ("exact", "course")
+
+
+def check_z_estimate(z_estimate):
+    """Refuses a z_estimate other than "exact" (quadrature) and "course" (the course's
+    50,000-sample Monte Carlo)."""
+    if z_estimate not in Z_ESTIMATES:
+        raise ValueError(f"GP: z_estimate must be 'exact' (quadrature) or 'course' (the "
+                         f"course's 50,000-sample Monte Carlo), got {z_estimate!r}")
+
+
 def check_p_func(p_func):
     """Refuses a p_func that is neither a Function (Constant(1), CosineLobe(1), one of your
     own) nor a finite number."""

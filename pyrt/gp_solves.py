@@ -7,6 +7,8 @@ returns garbage or a bare LinAlgError, so check_covariance says which samples to
 """
 import numpy as np
 
+from pyrt.gp_kernels import pairwise_r2
+
 # Q's condition number beyond which its inverse keeps no digit worth trusting in double
 # precision (1 / eps is 4.5e15): the samples are said to be too close for the noise.
 WORST_CONDITION = 1e13
@@ -18,8 +20,7 @@ REFINEMENTS = 2
 
 def closest_pair(positions: np.ndarray):
     """The indices i < j of the two closest sample positions, and their distance."""
-    difference = positions[:, None, :] - positions[None, :, :]
-    r2 = np.einsum("ijk,ijk->ij", difference, difference)
+    r2 = pairwise_r2(positions, positions)
     r2[np.diag_indices(len(positions))] = np.inf
     i, j = np.unravel_index(np.argmin(r2), r2.shape)
     return min(i, j), max(i, j), float(np.sqrt(r2[i, j]))
@@ -58,11 +59,14 @@ def check_covariance(Q: np.ndarray, positions: np.ndarray, noise: float,
                      "be largest, k symmetric), or noise_ is too small for these samples")
 
 
-def refined_weights(Q: np.ndarray, z: np.ndarray, invQ: np.ndarray) -> np.ndarray:
+def refined_weights(Q, z: np.ndarray, invQ: np.ndarray) -> np.ndarray:
     """w = z^T Q^-1, from z @ invQ refined by REFINEMENTS steps w += (z - Q w) @ invQ with
     the residual in extended precision (Q symmetric): good to rounding while Q's condition
-    number times the rounding of double precision stays well below 1."""
+    number times the rounding of double precision stays well below 1. Without Q (a
+    compute_inv_Q of one's own, which keeps none), z @ invQ as it is."""
     weights = z @ invQ
+    if Q is None or np.shape(Q) != np.shape(invQ):
+        return weights
     extended_Q = Q.astype(np.longdouble)
     for _ in range(REFINEMENTS):
         residual = z.astype(np.longdouble) - extended_Q @ weights.astype(np.longdouble)

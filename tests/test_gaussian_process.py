@@ -445,6 +445,13 @@ def test_bad_kernel_parameters_and_z_estimates_are_refused():
         GP(SobolevCov(), 1, z_estimate="mc")
 
 
+def test_a_z_estimate_set_as_an_attribute_is_checked_when_z_is_computed():
+    gp = GP(SobolevCov(), 1)
+    gp.z_estimate = "Course"
+    with pytest.raises(ValueError, match=r"z_estimate must be 'exact' .* got 'Course'"):
+        gp.add_sample_pos([POLE])
+
+
 # ------------------------------------------------------------------------------------------
 # Pickling, and what students write
 # ------------------------------------------------------------------------------------------
@@ -470,6 +477,22 @@ def test_students_styles_of_p_give_the_integral_of_cos():
         gp.add_sample_val(values)
         assert gp.compute_integral_BMC().r == pytest.approx(math.pi, abs=0.05)
     assert gp.compute_integral_BMC().r == pytest.approx(sum(gp.weights), rel=TIGHT)
+
+
+def test_a_compute_inv_q_of_ones_own_gives_the_weights_z_times_its_inverse():
+    class MyGP(GP):  # the course's loop and np.linalg.inv, keeping no Q
+        def compute_inv_Q(self):
+            n = len(self.samples_pos)
+            Q = np.zeros((n, n))
+            for i in range(n):
+                for j in range(n):
+                    Q[i, j] = self.cov_func.eval(self.samples_pos[i], self.samples_pos[j])
+            return np.linalg.inv(Q + np.identity(n) * self.noise ** 2)
+    gp = MyGP(SobolevCov(), 1)
+    gp.add_sample_pos([POLE, HORIZON])
+    assert list(gp.weights) == pytest.approx(list(gp_of([POLE, HORIZON]).weights), rel=1e-12)
+    assert gp.compute_variance_BMC() == pytest.approx(
+        gp_of([POLE, HORIZON]).compute_variance_BMC(), rel=1e-9)
 
 
 def test_the_course_style_bmc_integrator_lights_a_white_floor_under_a_white_sky():
