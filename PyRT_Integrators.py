@@ -6,7 +6,8 @@ centre, and saves the image. Write your own integrator by subclassing ``Integrat
 overriding ``compute_color``.
 
 What render() needs besides its loop (worker processes on every core, several samples per
-pixel, the progress bar, checks) lives in pyrt/rendering.py and the modules it uses.
+pixel, adaptive sampling, the progress bar, checks, the fast paths) lives beneath it, in
+pyrt/rendering.py's decorator @render_loop and the modules it uses.
 """
 from PyRT_Common import *
 from PyRT_Common import __all__ as _common_names, is_number
@@ -15,9 +16,7 @@ from pyrt.images import native_path
 # FRAMEWORK ONLY BEGIN
 from pyrt.acceleration.fingerprints import register_fused
 from pyrt.gaussian_pools import check_gp_pool
-from pyrt.rendering import check_render, rendered_blocks
-from pyrt.rows import not_a_color, sampled_row
-from pyrt.sampling import ADAPTIVE_TOLERANCE
+from pyrt.rendering import image_loop, render_loop
 # FRAMEWORK ONLY END
 
 __all__ = _common_names + [
@@ -84,24 +83,14 @@ class Integrator(ABC):
         result to read it as a story (see pyrt/explain.py)."""
         return pyrt.explain.explain_pixel(self, x, y)
 
-    # FRAMEWORK ONLY BEGIN
-    @property
-    def traces_rays(self):
-        """Whether render() makes the rows from compute_color's colours of camera rays, so
-        that PyRT may choose the rays of each pixel (samples per pixel, adaptive sampling):
-        unless render_row is overridden, as LazyIntegrator does to make its rows itself."""
-        return type(self).render_row is Integrator.render_row
-    # FRAMEWORK ONLY END
-
     # ASSIGNMENT 1.1-1.2 BEGIN
-
-    def render(self, workers=None, samples_per_pixel=1, progress=True, adaptive=False,
-               tolerance=ADAPTIVE_TOLERANCE):
+    @render_loop  # PyRT's machinery: every core, samples per pixel, progress (pyrt/rendering.py)
+    def render(self):
         """Renders every pixel of the scene's camera and saves the image.
 
-        Each row of pixels comes from render_row below: for every pixel a ray, its colour
-        from compute_color. The rows are stored in scene.rendered_image (what set_pixel
-        does for one pixel, here for whole rows at once), then the image is saved.
+        PyRT's render_loop runs this loop once per row of the image, on every core, with
+        scene.camera a camera over the row's rays (pyrt.rows.TaskCamera: a column of
+        them, width 1), and saves the image once all rows are done. render() takes:
 
         workers: how many processes render rows, this one included: None uses every core
             (for renders long enough to gain from them), 1 renders in this process only.
@@ -114,37 +103,14 @@ class Integrator(ABC):
             ray through every pixel's centre, then samples_per_pixel rays in the pixels
             that differ from a neighbour by more than tolerance, a fraction of the
             image's range as its PNG shows it (pyrt.sampling.AdaptiveSampling), and
-            saves a map of the rays per pixel. The loop below then receives the rows
-            twice: the refined rows replace the centre rays' rows."""
-        scene, workers, sampling = check_render(self, workers, samples_per_pixel, adaptive,
-                                                tolerance)
-        with rendered_blocks(self, workers, sampling, progress) as blocks:
-            for y0, rows in blocks:  # consecutive rows, in any order: y0, y0 + 1, ...
-                scene.rendered_image[y0:y0 + len(rows)] = rows
-        png = scene.save_image(self.get_filename(), tonemap=self.tonemap)
-        # in full: a relative name is relative to the folder the script was started from
-        print(f"Saved {png.absolute()} (and .npy, .hdr)")
-        sampling.report(self)
-
-    def render_row(self, y, samples_per_pixel=1):
-        """Row y of the image: for every pixel x, the colour arriving along the ray from the
-        camera through the pixel's centre, or the average over samples_per_pixel rays
-        spread inside the pixel (see pyrt.rows.sampled_row).
-
-        The colours come flat, [r0, g0, b0, r1, g1, b1, ...]: a flat list of floats becomes
-        an array sooner than a list of colours does. Camera rays start at no
-        surface, so t_min = 0: they see objects at any distance."""
-        if samples_per_pixel > 1:
-            return sampled_row(self, y, samples_per_pixel)
-        compute_color = self.compute_color
-        row = []
-        for direction in self.scene.camera.row_directions(y):  # get_direction(x, y), every x
-            color = compute_color(Ray(Vector3D(0.0, 0.0, 0.0), direction, INFINITY, 0.0))
-            try:
-                row += (color.r, color.g, color.b)
-            except AttributeError:
-                raise not_a_color(self, color, len(row) // 3, y) from None
-        return row
+            saves a map of the rays per pixel."""
+        cam = self.scene.camera
+        for x in range(cam.width):
+            for y in range(cam.height):
+                # a camera ray starts at no surface: t_min 0, it sees objects at any distance
+                ray = Ray(Vector3D(0.0, 0.0, 0.0), cam.get_direction(x, y), INFINITY, 0.0)
+                self.scene.set_pixel(self.compute_color(ray), x, y)
+        self.scene.save_image(self.get_filename())
     # ASSIGNMENT 1.1-1.2 END
 
 
@@ -162,15 +128,18 @@ class LazyIntegrator(Integrator):
         super().__init__(filename_ + "_Lazy", experiment_name)
 
     # FRAMEWORK ONLY BEGIN
-    def render_row(self, y, samples_per_pixel=1):
-        """One exact value per pixel, however many samples are asked for."""
-        camera = self.scene.camera
-        green = y / camera.height
-        return [c for x in range(camera.width) for c in (x / camera.width, green, 0.0)]
+    @image_loop  # one exact value per pixel, however many samples are asked for
+    def render(self):
+        """Assignment 1.1's loop: pixel (x, y) gets (x/width, y/height, 0)."""
+        cam = self.scene.camera
+        for x in range(cam.width):
+            for y in range(cam.height):
+                self.scene.set_pixel(RGBColor(x / cam.width, y / cam.height, 0.0), x, y)
+        self.scene.save_image(self.get_filename())
     # FRAMEWORK ONLY END
 
     def compute_color(self, ray):
-        """A ray carries no pixel position, so on its own it gets BLACK (see render_row)."""
+        """A ray carries no pixel position, so on its own it gets BLACK (see render)."""
         return BLACK
 
 

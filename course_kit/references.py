@@ -35,7 +35,8 @@ import practice1_checks as checks  # noqa: E402  (found through the line above)
 import practice1_render as render  # noqa: E402
 import PyRT_Integrators  # noqa: E402
 from course_kit.arithmetic import with_course_arithmetic  # noqa: E402
-from PyRT_Common import BLACK, EPSILON, Length, Ray, RGBColor  # noqa: E402
+from PyRT_Common import BLACK, EPSILON, Ray, RGBColor  # noqa: E402
+from pyrt.course_model import PhongParts, never_blocked  # noqa: E402
 
 # The rays of a seam pixel's alternatives: its centre moved by SEAM_WIDTH of a pixel
 SEAM_OFFSETS = [(checks.SEAM_WIDTH, 0.0), (-checks.SEAM_WIDTH, 0.0),
@@ -100,7 +101,9 @@ SHADOW_RAYS = (blocked_beyond_t_min, blocked_from_lifted_start,
 class PhongVariant(PyRT_Integrators.PhongIntegrator):
     """Phong as the assignment describes it, written the way a student writes it (a shadow
     ray per light, one of SHADOW_RAYS), with parts that can be left out: the ambient
-    term, the shadows; and a falloff of 1/r^falloff, of which the course's is 2."""
+    term, the shadows; and a falloff of 1/r^falloff, of which the course's is 2. It is
+    the course's own compute_color on the scene with those parts changed
+    (pyrt.course_model.PhongParts)."""
 
     def __init__(self, filename_, ambient=True, shadows=True, falloff=2,
                  blocked=blocked_beyond_t_min):
@@ -110,22 +113,12 @@ class PhongVariant(PyRT_Integrators.PhongIntegrator):
 
     def compute_color(self, ray):
         scene = self.scene
-        hit = scene.closest_hit(ray)
-        if not hit.has_hit:
-            return BLACK
-        brdf = scene.object_list[hit.primitive_index].get_BRDF()
-        color = brdf.kd.multiply(scene.i_a) if self.ambient else RGBColor(0.0, 0.0, 0.0)
-        for light in scene.pointLights:
-            to_light = light.pos - hit.hit_point
-            r = Length(to_light)
-            wi = to_light / r
-            if self.shadows and self.blocked(scene, hit, wi, r):
-                continue
-            f = brdf.get_value(wi, ray.d * -1.0, hit.normal)
-            # r * r, as students and the framework write it, to the last bit
-            color = color + light.intensity.multiply(f) / (
-                r * r if self.falloff == 2 else r ** self.falloff)
-        return color
+        blocked = self.blocked if self.shadows else never_blocked
+        self.scene = PhongParts(scene, blocked, self.ambient, falloff=self.falloff)
+        try:
+            return super().compute_color(ray)
+        finally:
+            self.scene = scene
 
 
 def mistake_integrator(mistake, filename):

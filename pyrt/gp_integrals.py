@@ -57,29 +57,29 @@ COURSE_BLOCK = 2048
 
 
 class Rule(NamedTuple):
-    """A quadrature rule on [0, 1]: each node's distance to 0 and to 1 (both kept, for the
-    digits of nodes near either end) and its weight."""
+    """A quadrature rule on [0, 1]: its nodes and weights."""
 
-    from_left: np.ndarray
-    from_right: np.ndarray
+    nodes: np.ndarray
     weights: np.ndarray
 
 
 @lru_cache(maxsize=None)
 def tanh_sinh(step: float) -> Rule:
     """The tanh-sinh rule of step h on [0, 1]: x = (1 + tanh(pi/2 sinh t)) / 2 at t = k h,
-    weight h pi cosh(t) x (1 - x), for |t| up to 4, beyond which weights are below 1e-33."""
+    weight h pi cosh(t) x (1 - x), for |t| up to 4, beyond which weights are below 1e-33.
+    x and 1 - x are computed as 1 / (1 + e^-u) and 1 / (1 + e^u), u = pi sinh(t), which
+    keep their digits however close to 0 they come."""
     t = np.arange(-math.ceil(4 / step), math.ceil(4 / step) + 1) * step
     u = math.pi * np.sinh(t)
-    from_left, from_right = 1 / (1 + np.exp(-u)), 1 / (1 + np.exp(u))
-    return Rule(from_left, from_right, step * math.pi * np.cosh(t) * from_left * from_right)
+    x, one_minus_x = 1 / (1 + np.exp(-u)), 1 / (1 + np.exp(u))
+    return Rule(x, step * math.pi * np.cosh(t) * x * one_minus_x)
 
 
 @lru_cache(maxsize=None)
 def gauss_legendre(points: int) -> Rule:
     """The Gauss-Legendre rule of `points` nodes on [0, 1]."""
     nodes, weights = np.polynomial.legendre.leggauss(points)
-    return Rule((1 + nodes) / 2, (1 - nodes) / 2, weights / 2)
+    return Rule((1 + nodes) / 2, weights / 2)
 
 
 def converged(integrate: Callable[[float], np.ndarray]) -> np.ndarray:
@@ -112,7 +112,7 @@ def sweeps(theta: np.ndarray, rule: Rule):
     theta = theta[:, None]
     inner = HALF_PI - theta
     for start, length, whole in ((0.0, inner, True), (inner, 2 * theta, False)):
-        gamma = start + length * rule.from_left
+        gamma = start + length * rule.nodes
         yield Sweep(gamma, length * rule.weights * np.sin(gamma),
                     np.cos(theta) * np.cos(gamma), np.sin(theta) * np.sin(gamma), whole)
 
@@ -141,7 +141,7 @@ def ring_integral(p: PolarProfile, sweep: Sweep) -> np.ndarray:
         cosines = np.maximum(a[..., None] + b[..., None] * np.cos(psi), 0.0)
         return p(cosines).sum(axis=-1) * (2 * math.pi / RING_POINTS)
     rule = gauss_legendre(ARC_POINTS)
-    psi = psi0[..., None] * rule.from_left
+    psi = psi0[..., None] * rule.nodes
     cosines = np.maximum(a[..., None] + b[..., None] * np.cos(psi), 0.0)
     return 2 * psi0 * (p(cosines) * rule.weights).sum(axis=-1)
 
@@ -246,7 +246,7 @@ def ring_angles(sweep: Sweep, resolution: Resolution):
             psi.shape, 2 * math.pi / points)
     rule = gauss_legendre(resolution.arc_points)
     psi0 = arc_end(sweep)[0][:, None]
-    return psi0 * (2 * rule.from_left - 1), 2 * psi0 * rule.weights
+    return psi0 * (2 * rule.nodes - 1), 2 * psi0 * rule.weights
 
 
 def ring_directions(frame: np.ndarray, gamma: np.ndarray, psi: np.ndarray) -> np.ndarray:
@@ -276,7 +276,7 @@ def symmetric_k_bar(kernel: RadialProfile, p: PolarProfile) -> float:
     sin(theta), for a kernel of the distance and a symmetric p."""
     def integrate(step):
         rule = tanh_sinh(step)
-        theta = HALF_PI * rule.from_left
+        theta = HALF_PI * rule.nodes
         z = symmetric_z(kernel, p, theta)
         return np.array([2 * math.pi * HALF_PI * np.sum(
             rule.weights * z * p(np.cos(theta)) * np.sin(theta))])
@@ -286,13 +286,14 @@ def symmetric_k_bar(kernel: RadialProfile, p: PolarProfile) -> float:
 def k_bar(cov_func, p_func) -> float:
     """The double integral over the hemisphere of k(omega, omega') p(omega) p(omega'): to
     rounding for a kernel of the distance and a symmetric p; for any other, from z (of
-    COARSE resolution) on a grid of directions (the tanh-sinh rule of step GENERAL_THETA_STEP in theta, the
-    trapezoidal rule of GENERAL_PHI_POINTS points in phi), good to about 1e-7."""
+    COARSE resolution) on a grid of directions (the tanh-sinh rule of step
+    GENERAL_THETA_STEP in theta, the trapezoidal rule of GENERAL_PHI_POINTS points in phi),
+    good to about 1e-7."""
     kernel, p = radial_profile(cov_func), polar_profile(p_func)
     if kernel is not None and p is not None:
         return symmetric_k_bar(kernel, p)
     rule = tanh_sinh(GENERAL_THETA_STEP)
-    theta = HALF_PI * rule.from_left
+    theta = HALF_PI * rule.nodes
     phi = np.arange(GENERAL_PHI_POINTS) * (2 * math.pi / GENERAL_PHI_POINTS)
     t, f = np.meshgrid(theta, phi, indexing="ij")
     directions = np.stack([np.sin(t) * np.sin(f), np.cos(t), np.sin(t) * np.cos(f)],

@@ -7,6 +7,8 @@ returns garbage or a bare LinAlgError, so check_covariance says which samples to
 """
 import numpy as np
 
+from pyrt.gp_kernels import pairwise_r2
+
 # Q's condition number beyond which its inverse keeps no digit worth trusting in double
 # precision (1 / eps is 4.5e15): the samples are said to be too close for the noise.
 WORST_CONDITION = 1e13
@@ -18,8 +20,7 @@ REFINEMENTS = 2
 
 def closest_pair(positions: np.ndarray):
     """The indices i < j of the two closest sample positions, and their distance."""
-    difference = positions[:, None, :] - positions[None, :, :]
-    r2 = np.einsum("ijk,ijk->ij", difference, difference)
+    r2 = pairwise_r2(positions, positions)
     r2[np.diag_indices(len(positions))] = np.inf
     i, j = np.unravel_index(np.argmin(r2), r2.shape)
     return min(i, j), max(i, j), float(np.sqrt(r2[i, j]))

@@ -1,4 +1,4 @@
-"""PyRT sampling: the plan of a render, which rays each pixel gets, and how accurate
+"""PyRT sampling: what a render samples, which rays each pixel gets, and how accurate
 their average is.
 
 One sample per pixel is the course's ray through the pixel's centre; N samples are the
@@ -6,19 +6,23 @@ jittered rays of pyrt.rows (SampledRows), whose spread estimates the error of th
 average. UniformSampling gives every pixel N rays; AdaptiveSampling first traces the
 centre rays, then N rays in the pixels that differ from a neighbour (refined_pixels).
 Each is a plan of passes over the image (RenderPass): the row function that makes each
-row, in whichever process (pyrt.workers) renders it, and what becomes of the rows. A
-render reports its estimated error beside the image.
+row, and what becomes of the rows. `render` runs the passes, with a progress bar each,
+through pyrt.workers (who renders them); a render reports its estimated error beside the
+image.
 """
+import contextlib
 import json
 import sys
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
+from tqdm import tqdm
 
 from PyRT_Common import is_number, plt
 from pyrt.images import display_image, write_atomically
 from pyrt.rows import CourseRows, RowStreams, SampledRows
+from pyrt.workers import render_blocks
 
 # The default tolerance of adaptive sampling: neighbouring pixels whose colours, as the PNG
 # shows them, differ by more than 3% of its range (8 of its 255 steps) are both refined.
@@ -55,12 +59,11 @@ SAMPLE_MAP_COLORS = "inferno"  # black: the fewest rays, through red to pale yel
 
 
 class RenderPass(NamedTuple):
-    """One pass over the image: its row function (rows(integrator, y), picklable for the
-    worker processes), how many processes render it (None: as many as repay starting
-    them), keep(y0, block), which takes the rendered block of rows in this process and
-    returns its colours, and the words that tell the progress bar which pass it is."""
+    """One pass over the image: its row function (CourseRows or SampledRows, picklable for
+    the worker processes), keep(y0, block), which takes the rendered block of rows in this
+    process and returns its colours, and the words that tell the progress bar which pass
+    it is."""
     rows: object
-    workers: object
     keep: object
     description: str = ""
 
@@ -72,22 +75,39 @@ class UniformSampling:
     adaptive = False
     tolerance = None
 
-    def __init__(self, samples, traced=True):
+    def __init__(self, samples):
         self.samples = samples
-        # PyRT traces the N > 1 rays of each pixel itself and sees their spread, unless the
-        # integrator makes its rows itself
-        self.traced = traced and samples > 1
-        self.variance = None  # the estimated squared error of each pixel and channel
+        # the estimated squared error of each pixel and channel: PyRT traces the N > 1 rays
+        # of each pixel itself and sees their spread (None: it did not)
+        self.variance = None
 
-    def passes(self, integrator, workers, seed):
+    def render(self, integrator, loop, workers, seed, progress):
+        """Renders the passes into the scene's image, each by `workers` processes (None: as
+        many as repay starting them), with the integrator's render loop `loop` (a LoopBody)
+        run once per row; shows a progress bar for each pass. Returns the names that the
+        loop asked this process to save the image under (pyrt.rows.TaskStandIns)."""
+        image = integrator.scene.rendered_image
+        height, width = image.shape[:2]
+        saved = []
+        for rendering in self.passes(integrator, seed, loop, saved):
+            rows = rendering.rows
+            with tqdm(total=rows.pixels(0, height, width), unit="px", unit_scale=True,
+                      disable=not progress, mininterval=0.5,
+                      desc=type(integrator).__name__ + rendering.description) as bar, \
+                    contextlib.closing(render_blocks(integrator, rows, workers)) as blocks:
+                for y0, block in blocks:  # consecutive rows, in any order
+                    image[y0:y0 + len(block)] = rendering.keep(y0, block)
+                    bar.update(rows.pixels(y0, y0 + len(block), width))
+        return saved
+
+    def passes(self, integrator, seed, loop, saved):
         """The passes of the render, each planned once the passes before it are done; their
         rows draw random numbers from streams made from seed (RowStreams)."""
-        if not self.traced:
-            yield RenderPass(CourseRows(self.samples, RowStreams(seed)), workers,
-                             lambda y0, block: block)
+        if self.samples == 1:
+            yield RenderPass(CourseRows(RowStreams(seed), loop, saved), lambda y0, block: block)
             return
         self.variance = np.zeros(integrator.scene.rendered_image.shape)
-        yield RenderPass(SampledRows(self.samples, RowStreams(seed)), workers,
+        yield RenderPass(SampledRows(self.samples, RowStreams(seed), loop, saved),
                          self._keep_sampled)
 
     def _keep_sampled(self, y0, block):
@@ -105,8 +125,8 @@ class UniformSampling:
         base = integrator.get_filename()
         if self.variance is None:
             if self.samples > 1:
-                print(f"No error estimate: {type(integrator).__name__} makes its rows itself "
-                      "(it overrides render_row), so PyRT does not see its samples")
+                print(f"No error estimate: {type(integrator).__name__} renders its pixels "
+                      "itself (a render loop of its own), so PyRT does not see its samples")
             Path(base + ACCURACY_SUFFIX).unlink(missing_ok=True)
         else:
             self._write_accuracy(integrator.scene.rendered_image, base)
@@ -163,11 +183,11 @@ class AdaptiveSampling(UniformSampling):
         self.tolerance = tolerance
         self.centre = self.refined = None
 
-    def passes(self, integrator, workers, seed):
+    def passes(self, integrator, seed, loop, saved):
         image = integrator.scene.rendered_image
         self.centre = np.zeros(image.shape)
         self.variance = np.zeros(image.shape)
-        yield RenderPass(CourseRows(1, RowStreams(seed, 0)), workers, self._keep_centre,
+        yield RenderPass(CourseRows(RowStreams(seed, 0), loop, saved), self._keep_centre,
                          " centre rays")
         display = display_image(self.centre, integrator.tonemap)
         self.refined = refined_pixels(display, self.tolerance)
@@ -175,7 +195,8 @@ class AdaptiveSampling(UniformSampling):
             return
         # its time is measured on its first rows (pyrt.workers.render_blocks): a refined
         # pixel's rays cost more than a centre ray each
-        yield RenderPass(SampledRows(self.samples, RowStreams(seed, 1), self.refined), workers,
+        yield RenderPass(SampledRows(self.samples, RowStreams(seed, 1), loop, saved,
+                                     self.refined),
                          self._keep_refined, f" {self.samples} rays at edges")
 
     def _keep_centre(self, y0, block):
@@ -205,21 +226,21 @@ class AdaptiveSampling(UniformSampling):
         super().report(integrator)
 
 
-def sampling_plan(integrator, samples, adaptive, tolerance):
-    """UniformSampling or AdaptiveSampling for render()'s arguments, checked."""
+def sampling_plan(integrator, samples, adaptive, tolerance, traced):
+    """UniformSampling or AdaptiveSampling for render()'s arguments, checked; traced: PyRT
+    chooses the integrator's camera rays (False: its loop renders its pixels itself)."""
     if not isinstance(adaptive, (bool, np.bool_)):
         raise ValueError(f"render: adaptive must be True or False, got {adaptive!r}")
     if not (is_number(tolerance) and 0.0 <= tolerance <= 1.0):
         raise ValueError(f"render: tolerance must be a number from 0 to 1 (a fraction of the "
                          f"image's range as its PNG shows it), got {tolerance!r}")
-    traced = integrator.traces_rays
     if adaptive and samples == 1:
         raise ValueError("render: adaptive=True needs samples_per_pixel >= 2, the rays the "
                          "pixels at edges get; with 1 every pixel gets the ray through its centre")
     if adaptive and not traced:
-        print(f"PyRT: {type(integrator).__name__} makes its rows itself (it overrides "
-              f"render_row), so adaptive sampling cannot choose its rays: every pixel gets "
+        print(f"PyRT: {type(integrator).__name__} renders its pixels itself (a render loop of "
+              f"its own), so adaptive sampling cannot choose its rays: every pixel gets "
               f"{samples}", file=sys.stderr)
     if adaptive and traced:
         return AdaptiveSampling(samples, float(tolerance))
-    return UniformSampling(samples, traced)
+    return UniformSampling(samples)

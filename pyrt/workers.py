@@ -42,10 +42,18 @@ COMPACT_CLASSES = (Scene, Primitive, BRDF, PointLight, Camera)
 START_METHOD_VARIABLE = "PYRT_START_METHOD"
 
 
-def render_blocks(integrator, height, rows, workers):
+def render_blocks(integrator, rows, workers):
     """Yields (first row, block) blocks of the image, each from render_block with the row
     function rows, in any order, rendered by `workers` processes; None: as many as repay
-    starting them, which the time of the first rows tells."""
+    starting them, which the time of the first rows tells. Each process renders with the
+    scene's queries accelerated (pyrt.acceleration), and nothing may change the scene."""
+    camera = integrator.scene.camera
+    with accelerated(integrator, camera.height * camera.width):
+        yield from _render_blocks(integrator, camera.height, rows, workers)
+
+
+def _render_blocks(integrator, height, rows, workers):
+    """render_blocks, with this process's queries accelerated."""
     first = 0
     if workers is None:
         width = integrator.scene.camera.width

@@ -156,9 +156,16 @@ def direction_through(x, y, width, height):
     return ((2 * (x + 0.5) / width - 1) * width / height, 1 - 2 * (y + 0.5) / height, -1.0)
 
 
+def image_camera(camera):
+    """The scene's own camera: during a render, compute_color sees scene.camera as the
+    camera of a task, over its rays (pyrt.rows.TaskCamera), whose `camera` it is."""
+    return getattr(camera, "camera", camera)
+
+
 def pixel_of(ray, camera):
     """The pixel whose centre ray is `ray`: get_direction inverted, so that a test
     integrator can give chosen pixels chosen colours."""
+    camera = image_camera(camera)
     d = ray.d
     scale_y = math.tan(camera.vertical_fov / 2)
     x_s = d.x / -d.z / (scale_y * camera.aspect_ratio)
@@ -322,6 +329,7 @@ class HeldBackWorker:
 def image_point(ray, camera):
     """(x + u, y + v): where the ray crosses the image plane, in pixels from the image's
     top left corner (get_direction inverted)."""
+    camera = image_camera(camera)
     d = ray.d
     scale_y = math.tan(camera.vertical_fov / 2)
     x_s = d.x / -d.z / (scale_y * camera.aspect_ratio)
@@ -471,3 +479,9 @@ def write_texts(folder, texts):
     for name, text in texts.items():
         (folder / name).write_text(text, encoding="utf-8")
     return folder
+
+
+def seeded_render(integrator, scene, seed=1, **render_options):
+    """render_image after random.seed(seed), in one process unless workers is given."""
+    random_module.seed(seed)
+    return render_image(integrator, scene, **dict({"workers": 1}, **render_options))

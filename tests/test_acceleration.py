@@ -1,6 +1,7 @@
 """pyrt/acceleration.py: the fast queries give the plain loops' answers, bit for bit, on
 random scenes and rays; they never stand in for code of a student's own; their setup grows
 with objects x lights; and Figure 1's seams fall as in the course's own render."""
+import ast
 import math
 import sys
 
@@ -332,6 +333,23 @@ def test_a_debugger_leaves_the_plain_code_to_run(monkeypatch):
         sys.settrace(previous)
 
 
+FUNCTION = '''
+def half(x):
+    """Half of x."""
+    return x / 2  # exact in binary
+'''
+
+
+def test_a_fingerprint_is_of_the_code_alone_not_of_its_docstrings_comments_or_layout():
+    code_text = pyrt.acceleration.fingerprints.code_text
+    assert code_text(ast.parse("x = 1")) == (
+        "Module(body=[Assign(targets=[Name(id='x')], value=Constant(value=1))])")
+    text = code_text(ast.parse(FUNCTION))
+    reworded = FUNCTION.replace("Half of x.", "x halved.").replace("# exact in binary", "")
+    assert code_text(ast.parse(reworded.replace("x / 2", "x/2"))) == text
+    assert code_text(ast.parse(FUNCTION.replace("x / 2", "x * 0.5"))) != text
+
+
 def test_the_fingerprints_are_those_of_the_functions_the_fast_paths_repeat():
     # A failure here means a function the fast paths repeat has changed: make the fast
     # path do what it does now, check it with this file's tests, and copy the new
@@ -380,7 +398,7 @@ COURSE_SEAMS = REPO / "tests" / "data" / "course_figure1_seams.npz"
 def test_figure1_shows_on_its_seams_what_the_course_renders(all_figures):
     # The course's own render of Figure 1 on the seams where the walls meet (the image's
     # diagonals, 3 pixels either side), stored from ../shared/course-renders by
-    # tests/make_references.py: the course's camera arithmetic and strict tie rule give
+    # tools/make_references.py: the course's camera arithmetic and strict tie rule give
     # the same surface, and the same colour to rounding, at every one of them.
     result, out = all_figures
     assert result.returncode == 0, result.stderr

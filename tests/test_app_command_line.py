@@ -397,20 +397,26 @@ def test_spp_option_averages_that_many_samples_per_pixel(app, tmp_path):
 
 @pytest.fixture
 def render_calls(monkeypatch):
-    """The arguments of every Integrator.render call (the course's integrators inherit it),
-    which still renders."""
+    """The arguments of every render() call of the course's integrators (they inherit
+    Integrator.render, LazyIntegrator has its own with the same arguments), which still
+    renders."""
     calls = []
-    original = Integrator.render
-    signature = inspect.signature(original)
 
-    def recording(*args, **kwargs):
-        bound = signature.bind(*args, **kwargs)
-        bound.apply_defaults()
-        calls.append({name: value for name, value in bound.arguments.items()
-                      if name != "self"})
-        return original(*args, **kwargs)
+    def record(cls):
+        original = cls.render
+        signature = inspect.signature(original)
 
-    monkeypatch.setattr(Integrator, "render", recording)
+        def recording(*args, **kwargs):
+            bound = signature.bind(*args, **kwargs)
+            bound.apply_defaults()
+            calls.append({name: value for name, value in bound.arguments.items()
+                          if name != "self"})
+            return original(*args, **kwargs)
+
+        monkeypatch.setattr(cls, "render", recording)
+
+    record(Integrator)
+    record(LazyIntegrator)
     return calls
 
 

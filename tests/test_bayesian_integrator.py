@@ -22,7 +22,7 @@ import pyrt.acceleration.accelerated
 from GaussianProcess import GP, SobolevCov
 from helpers import (ALBEDO, EMISSION, FURNACE_CENTRE, FURNACE_RADIUS, RADIANCE,  # noqa: F401
                      counted_calls, course_renders, emissive_box_scene, furnace_scene,
-                     global_generator_kept, render_image, sky_sphere_scene, sphere_pixels,
+                     global_generator_kept, seeded_render, sky_sphere_scene, sphere_pixels,
                      with_map_and_emitter)
 from AppRenderer import cornell_box_scene, sphere_scene
 from benchmarks.flat_loop import flat_bmc
@@ -56,11 +56,6 @@ def cosines(gp, power=1):
     return np.array([omega.y for omega in gp.samples_pos]) ** power
 
 
-def render(tmp_path, integrator, scene, seed=1, **options):
-    random_module.seed(seed)
-    return render_image(integrator, scene, **dict({"workers": 1}, **options))
-
-
 def assert_each_pixel_is_one_of(values, estimates):
     """Every pixel's colour (rows of values) is one of the estimates (rows), to ROUNDING;
     returns how many pixels took each."""
@@ -75,7 +70,7 @@ def assert_each_pixel_is_one_of(values, estimates):
 def test_white_furnace_gives_each_gps_estimate_of_pi_times_albedo_and_radiance(tmp_path):
     pool = make_pool(3, SAMPLES)
     scene = furnace_scene(16)
-    image = render(tmp_path, BayesianMonteCarloIntegrator(SAMPLES, pool, str(tmp_path / "f")),
+    image = seeded_render(BayesianMonteCarloIntegrator(SAMPLES, pool, str(tmp_path / "f")),
                    scene)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_l = np.array(ALBEDO) * RADIANCE
@@ -95,7 +90,7 @@ def test_white_furnace_gives_each_gps_estimate_of_pi_times_albedo_and_radiance(t
 def test_emitting_box_gives_the_gps_estimate_of_pi_times_albedo_and_emission(tmp_path):
     pool = make_pool(1, SAMPLES, seed=4)
     scene = emissive_box_scene(12)
-    image = render(tmp_path, BayesianMonteCarloIntegrator(SAMPLES, pool[0],
+    image = seeded_render(BayesianMonteCarloIntegrator(SAMPLES, pool[0],
                                                           str(tmp_path / "e")), scene)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_e = np.array(ALBEDO) * np.array(EMISSION)
@@ -108,7 +103,7 @@ def test_emitting_box_gives_the_gps_estimate_of_pi_times_albedo_and_emission(tmp
 def test_importance_sampled_furnace_gives_the_gps_estimate_of_the_cosines_integral(tmp_path):
     pool = make_pool(2, SAMPLES, CosinePDF(1), CosineLobe(1), seed=2)
     scene = furnace_scene(12)
-    image = render(tmp_path, BMCISIntegrator(SAMPLES, pool, str(tmp_path / "is")), scene)
+    image = seeded_render(BMCISIntegrator(SAMPLES, pool, str(tmp_path / "is")), scene)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_l = np.array(ALBEDO) * RADIANCE
     estimates = np.array([c_l / math.pi * gp.weights.sum() for gp in pool])
@@ -128,7 +123,7 @@ class CosineTwiceBMC(BayesianMonteCarloIntegrator):
 def test_white_furnace_catches_the_cosine_counted_twice(tmp_path):
     pool = make_pool(1, SAMPLES)
     scene = furnace_scene(12)
-    image = render(tmp_path, CosineTwiceBMC(SAMPLES, pool, str(tmp_path / "twice")), scene)
+    image = seeded_render(CosineTwiceBMC(SAMPLES, pool, str(tmp_path / "twice")), scene)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_l = np.array(ALBEDO) * RADIANCE
     np.testing.assert_allclose(image[hit] / c_l, pool[0].weights @ cosines(pool[0], 2)
@@ -158,8 +153,9 @@ def test_bmc_error_is_below_classic_monte_carlos_against_the_reference(tmp_path)
                                                  str(tmp_path / "b"))),
             ("bmc_is", BMCISIntegrator(samples, make_pool(8, samples, CosinePDF(1),
                                                           CosineLobe(1)), str(tmp_path / "b")))]:
-        image = render(tmp_path, integrator, sphere_scene(envMap=sky, width=size,
-                                                           height=size), 3)
+        # on two processes, the image the same as in one (the streams are the rows')
+        image = seeded_render(integrator, sphere_scene(envMap=sky, width=size,
+                                                           height=size), 3, workers=2)
         errors[name] = math.sqrt(np.mean((image - reference) ** 2))
     print(f"RMSE against the 1024-sample reference at {samples} samples:", errors)
     # measured over seeds, BMC's error is 0.79 times CMC's, with a spread of 0.01
@@ -191,12 +187,12 @@ def test_fast_path_gives_the_plain_codes_image_bit_for_bit(tmp_path, monkeypatch
     pool = make_pool(3, 8, pdf, p_func)
     size = 12
     calls = counted_calls(monkeypatch, fused_class)
-    fused = render(tmp_path, integrator_class(8, pool, str(tmp_path / "f")), make(size), 7)
+    fused = seeded_render(integrator_class(8, pool, str(tmp_path / "f")), make(size), 7)
     assert calls[0] == size * size
     with monkeypatch.context() as patch:
         patch.delitem(pyrt.acceleration.accelerated.FUSED_INTEGRATORS, "bmc")
         patch.delitem(pyrt.acceleration.accelerated.FUSED_INTEGRATORS, "bmcis")
-        plain = render(tmp_path, integrator_class(8, pool, str(tmp_path / "p")), make(size), 7)
+        plain = seeded_render(integrator_class(8, pool, str(tmp_path / "p")), make(size), 7)
     assert calls[0] == size * size
     assert plain.any() and np.array_equal(fused, plain)
 
@@ -205,7 +201,7 @@ def test_fast_path_gives_the_plain_codes_image_bit_for_bit(tmp_path, monkeypatch
 def test_fast_path_gives_way_to_a_subclass_with_values_or_draws_of_its_own(
         tmp_path, monkeypatch, subclass):
     calls = counted_calls(monkeypatch, AcceleratedBMC)
-    render(tmp_path, globals()[subclass](8, make_pool(2, 8), str(tmp_path / "t")),
+    seeded_render(globals()[subclass](8, make_pool(2, 8), str(tmp_path / "t")),
            sky_sphere_scene(12))
     assert calls[0] == 0
 
@@ -225,7 +221,7 @@ def test_seeded_render_is_the_same_for_any_workers_and_start_method(tmp_path, mo
                 patch.setenv(START_METHOD_VARIABLE, start_method)
             if workers > 1:
                 worker_first()
-            renders[name] = render(tmp_path, BayesianMonteCarloIntegrator(
+            renders[name] = seeded_render(BayesianMonteCarloIntegrator(
                 8, pool, str(tmp_path / name)), sky_sphere_scene(16), seed, workers=workers)
     err = capfd.readouterr().err
     assert "Traceback" not in err and "one process" not in err
@@ -254,7 +250,7 @@ def test_numpys_draws_are_the_rows_own_too(tmp_path, monkeypatch, capfd, worker_
                 patch.setenv(START_METHOD_VARIABLE, start_method)
             if workers > 1:
                 worker_first()
-            renders[name] = render(tmp_path, NumpyRotations(8, pool, str(tmp_path / name)),
+            renders[name] = seeded_render(NumpyRotations(8, pool, str(tmp_path / name)),
                                    sky_sphere_scene(16), 5, workers=workers)
     assert "Traceback" not in capfd.readouterr().err
     assert renders["one"].any()
@@ -262,6 +258,31 @@ def test_numpys_draws_are_the_rows_own_too(tmp_path, monkeypatch, capfd, worker_
     assert np.array_equal(renders["one"], renders["spawned"])
     # numpy's generator is given back as it was: the render drew nothing of it
     assert np.array_equal(np.random.get_state()[1], before)
+
+
+class CountedGP(GP):
+    """A GP that counts how often it is pickled, in this process."""
+
+    pickled = 0
+
+    def __reduce_ex__(self, protocol):
+        CountedGP.pickled += 1
+        return super().__reduce_ex__(protocol)
+
+
+def test_the_pool_reaches_the_workers_once_not_per_row(tmp_path, monkeypatch, worker_first):
+    random_module.seed(3)
+    pool = []
+    for _ in range(3):
+        gp = CountedGP(SobolevCov(), Constant(1))
+        gp.add_sample_pos(sample_set_hemisphere(8, UniformPDF())[0])
+        pool.append(gp)
+    monkeypatch.setattr(CountedGP, "pickled", 0)
+    worker_first()
+    image = seeded_render(BayesianMonteCarloIntegrator(8, pool, str(tmp_path / "w")),
+                   sky_sphere_scene(24), 4, workers=2)
+    assert image.any()
+    assert CountedGP.pickled == 3  # each GP once, in the integrator sent to the workers
 
 
 class LocalConstant(Function):
@@ -285,7 +306,7 @@ def test_a_pool_whose_p_func_cannot_be_pickled_renders_in_one_process_saying_why
         gp.p_func = lambda omega: 1.0  # what pickle cannot send to a worker
     with pytest.raises(Exception):
         pickle.dumps(pool[0])
-    image = render(tmp_path, BayesianMonteCarloIntegrator(8, pool, str(tmp_path / "l")),
+    image = seeded_render(BayesianMonteCarloIntegrator(8, pool, str(tmp_path / "l")),
                    sky_sphere_scene(48), 2, workers=2)
     err = capfd.readouterr().err
     assert "rendering in one process: integrator.myGP[0].p_func cannot be sent" in err
@@ -331,7 +352,7 @@ def test_flat_loop_gives_renders_image_bit_for_bit(tmp_path, kind):
     size, seed = 16, 4
     random_module.seed(seed)
     stream_seed = int(random_module.random() * 2 ** 53)  # render()'s one draw
-    expected = render(tmp_path, integrator_class(8, pool, str(tmp_path / "r")),
+    expected = seeded_render(integrator_class(8, pool, str(tmp_path / "r")),
                       sky_sphere_scene(size), seed)
     flat = flat_bmc(sky_sphere_scene(size), pool, stream_seed,
                     cosine_prior=integrator_class is BMCISIntegrator)

@@ -14,7 +14,7 @@ import pytest
 import pyrt.acceleration.accelerated
 from benchmarks.flat_loop import flat_cmc
 from helpers import (ALBEDO, EMISSION, FURNACE_CENTRE, FURNACE_RADIUS, RADIANCE,
-                     emissive_box_scene, furnace_scene, render_image, sky_sphere_scene,
+                     emissive_box_scene, furnace_scene, seeded_render, sky_sphere_scene,
                      sphere_pixels)
 from PyRT_Common import (BLACK, CosinePDF, Dot, UniformPDF, Vector3D,
                          center_around_normal, sample_set_hemisphere)
@@ -25,17 +25,12 @@ from PyRT_Integrators import CMCIntegrator, CMCISIntegrator
 ROUNDING = 1e-5
 
 
-def render(tmp_path, integrator, scene, seed, **options):
-    random_module.seed(seed)
-    return render_image(integrator, scene, **dict({"workers": 1}, **options))
-
-
 def test_importance_sampled_white_furnace_is_exact_at_any_sample_count(tmp_path):
     scene = furnace_scene(12)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_l = np.array(ALBEDO) * RADIANCE
     for samples in (1, 7):
-        image = render(tmp_path, CMCISIntegrator(samples, str(tmp_path / "is")), scene, 3)
+        image = seeded_render(CMCISIntegrator(samples, str(tmp_path / "is")), scene, 3)
         np.testing.assert_allclose(image[hit], np.broadcast_to(c_l, image[hit].shape),
                                    rtol=ROUNDING, atol=0.0)
         assert np.all(image[~hit] == RADIANCE)
@@ -44,7 +39,7 @@ def test_importance_sampled_white_furnace_is_exact_at_any_sample_count(tmp_path)
 def test_importance_sampled_emitting_box_is_exact(tmp_path):
     scene = emissive_box_scene(12)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
-    image = render(tmp_path, CMCISIntegrator(5, str(tmp_path / "is")), scene, 4)
+    image = seeded_render(CMCISIntegrator(5, str(tmp_path / "is")), scene, 4)
     c_e = np.array(ALBEDO) * np.array(EMISSION)
     np.testing.assert_allclose(image[hit], np.broadcast_to(c_e, image[hit].shape),
                                rtol=ROUNDING, atol=0.0)
@@ -77,7 +72,7 @@ def test_importance_sampled_furnace_catches_the_cosine_counted_twice(tmp_path):
     scene = furnace_scene(12)
     hit, _ = sphere_pixels(scene.camera, FURNACE_CENTRE, FURNACE_RADIUS)
     c_l = np.array(ALBEDO) * RADIANCE
-    image = render(tmp_path, CosineTwiceIS(samples, str(tmp_path / "twice"),
+    image = seeded_render(CosineTwiceIS(samples, str(tmp_path / "twice"),
                                            pdf=CosinePDF(1)), scene, 5)
     assert np.all(np.abs(image[hit] / c_l - 2 / 3) < 0.2)
     mean = image[hit].mean(axis=0) / c_l
@@ -100,12 +95,12 @@ class HalfCosinePDF(CosinePDF):
 def test_fast_path_gives_the_plain_codes_image_bit_for_bit_for_each_pdf(
         tmp_path, monkeypatch, fused_calls, pdf, fused):
     size, samples = 12, 6
-    image = render(tmp_path, CMCIntegrator(samples, str(tmp_path / "a"), pdf=pdf),
+    image = seeded_render(CMCIntegrator(samples, str(tmp_path / "a"), pdf=pdf),
                    sky_sphere_scene(size), 17)
     assert fused_calls[0] == (size * size if fused else 0)
     with monkeypatch.context() as patch:
         patch.delitem(pyrt.acceleration.accelerated.FUSED_INTEGRATORS, "cmc")
-        plain = render(tmp_path, CMCIntegrator(samples, str(tmp_path / "b"), pdf=pdf),
+        plain = seeded_render(CMCIntegrator(samples, str(tmp_path / "b"), pdf=pdf),
                        sky_sphere_scene(size), 17)
     assert plain.any() and np.array_equal(image, plain)
 
@@ -136,7 +131,7 @@ def test_flat_loop_gives_renders_importance_sampled_image_bit_for_bit(tmp_path):
     size, samples, seed = 16, 8, 6
     random_module.seed(seed)
     stream_seed = int(random_module.random() * 2 ** 53)  # render()'s one draw
-    expected = render(tmp_path, CMCISIntegrator(samples, str(tmp_path / "f")),
+    expected = seeded_render(CMCISIntegrator(samples, str(tmp_path / "f")),
                       sky_sphere_scene(size), seed)
     flat = flat_cmc(sky_sphere_scene(size), samples, stream_seed, pdf_exponent=1)
     assert expected.any() and np.array_equal(flat, expected)

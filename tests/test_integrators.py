@@ -492,11 +492,13 @@ STUDENT = Path(__file__).resolve().parent / "student"
 
 
 def test_a_course_style_student_solution_runs_unchanged_and_gives_pyrt_images(tmp_path):
-    # The student's own PyRT_Integrators.py (tests/student/) shadows PyRT's, as in their
-    # project; their Scene.any_hit and closest_hit replace PyRT's, so that none of PyRT's
-    # fast paths stands in for them. The images are PyRT's to rounding, the seams where
-    # two walls of the Cornell box meet included: both keep the strictly nearest hit.
-    for name in ("PyRT_Integrators.py", "student_scene.py", "render_all.py"):
+    # The student's own PyRT_Integrators.py (tests/student/student_integrators.py, copied
+    # in under the course's name) shadows PyRT's, as in their project; their Scene.any_hit
+    # and closest_hit replace PyRT's, so that none of PyRT's fast paths stands in for them.
+    # The images are PyRT's to rounding, the seams where two walls of the Cornell box
+    # meet included: both keep the strictly nearest hit.
+    shutil.copy(STUDENT / "student_integrators.py", tmp_path / "PyRT_Integrators.py")
+    for name in ("student_scene.py", "render_all.py"):
         shutil.copy(STUDENT / name, tmp_path / name)
     result = run_python(["render_all.py", tmp_path / "student", 40], cwd=tmp_path)
     assert result.returncode == 0, result.stderr

@@ -24,6 +24,7 @@ from helpers import (ALBEDO, EMISSION, FURNACE_CENTRE, FURNACE_RADIUS, RADIANCE,
                      course_renders, emissive_box_scene, emitter, furnace_scene,
                      global_generator_kept, lambertian, render_image, sky_sphere_scene,
                      sphere_pixels, with_map_and_emitter)
+from pyrt.acceleration.culling import scene_size
 from pyrt.acceleration.monte_carlo import OWN_OBJECT_CLEARANCE
 from pyrt.environment_maps import sky_map
 from pyrt.workers import START_METHOD_VARIABLE
@@ -428,7 +429,7 @@ def test_a_sample_ray_that_clearly_leaves_a_parallelogram_never_meets_it_again(
     assume(Length(target - Vector3D(*start)) > 1e-3)
     hit = wall.intersect(Ray(Vector3D(*start), Normalize(target - Vector3D(*start))))
     assume(hit.has_hit)
-    size = max(max(abs(c) for c in corner), max(abs(c) for c in target), 1e-300)
+    size = scene_size([wall], [])  # the scale AcceleratedCMC takes: the wall's four corners
     cos_theta = OWN_OBJECT_CLEARANCE * size * 1.0001
     assume(cos_theta < 1.0)
     w = leaving_direction(hit.normal, cos_theta, around)

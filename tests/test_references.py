@@ -1,6 +1,6 @@
 """Each figure of the course, rendered at 500 x 500 by `python AppRenderer.py --all-figures`
 as a student renders it, matches its reference image in references/ (made by
-tests/make_references.py) to within one 8-bit step per channel, compared by
+tools/make_references.py) to within one 8-bit step per channel, compared by
 pyrt.compare.compare_with_reference.
 
 On a mismatch the expected image, the rendered one and their difference (a heat map:
@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from AppRenderer import FILENAME, figure_integrator
-from make_references import FIGURES
+from tools.make_references import FIGURES
 from pyrt.compare import compare_with_reference
 
 FAILURES = Path(__file__).resolve().parent / "failures"
@@ -31,7 +31,7 @@ def save_failure(figure, png, comparison):
 @pytest.mark.parametrize("figure", FIGURES, ids=lambda figure: figure.name)
 def test_figure_matches_its_reference_image(figure, all_figures):
     assert figure.reference.is_file(), (
-        f"{figure.reference} is missing; create it with `python tests/make_references.py`")
+        f"{figure.reference} is missing; create it with `python tools/make_references.py`")
     run, out = all_figures
     assert run.returncode == 0, run.stderr
     png = Path(figure_integrator(figure, str(out / FILENAME)).get_filename() + ".png")

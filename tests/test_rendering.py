@@ -13,6 +13,7 @@ from helpers import (GREY, PNG_TOLERANCE, ConstantGrey, PixelGrey, StepAt, fov90
                      pixel_of, read_png, render_image, small_cornell_box)
 from PyRT_Core import *
 from PyRT_Integrators import *
+from pyrt.rendering import render_loop
 
 
 # ------------------------------------------------------------------------------------------
@@ -152,19 +153,25 @@ def test_a_colour_with_a_non_number_channel_at_the_end_of_a_row_is_found_there(t
         integrator.render(workers=1, progress=False)
 
 
-class LeavesOutTheLastNumberOfRow2(PixelGrey):
-    """Makes its rows itself, and row 2 lacks the blue channel of its last pixel."""
+class SkipsTheSecondRay(PixelGrey):
+    """The course's loop under PyRT's render_loop, leaving out the second ray of each task
+    (a row of the image, its rays a column of the task's camera)."""
 
-    def render_row(self, y, samples_per_pixel=1):
-        row = super().render_row(y, samples_per_pixel)
-        return row[:-1] if y == 2 else row
+    @render_loop
+    def render(self):
+        cam = self.scene.camera
+        for y in range(cam.height):
+            if y != 1:
+                ray = Ray(Vector3D(0.0, 0.0, 0.0), cam.get_direction(0, y), INFINITY, 0.0)
+                self.scene.set_pixel(self.compute_color(ray), 0, y)
+        self.scene.save_image(self.get_filename())
 
 
-def test_rows_that_do_not_form_an_image_stop_the_render_with_a_value_error(tmp_path):
-    integrator = LeavesOutTheLastNumberOfRow2(str(tmp_path / "img"))
+def test_a_loop_that_leaves_a_pixel_unset_stops_the_render_naming_it(tmp_path):
+    integrator = SkipsTheSecondRay(str(tmp_path / "img"))
     integrator.add_scene(fov90_scene(3, 8))
-    with pytest.raises(ValueError, match=r"^render: the colours of the image do not form an "
-                                         r"array$"):
+    with pytest.raises(RuntimeError, match=r"^SkipsTheSecondRay.render: the loop set no "
+                                           r"colour for pixel \(1, 0\)"):
         integrator.render(workers=1, progress=False)
     assert not (tmp_path / "img_PixelGrey.npy").exists()
 

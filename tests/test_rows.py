@@ -7,6 +7,7 @@ import pytest
 
 from helpers import RandomGrey, fov90_scene, render_image
 from pyrt.rows import CourseRows, RowStreams, render_block
+from PyRT_Integrators import Integrator
 from pyrt.workers import START_METHOD_VARIABLE
 
 
@@ -64,7 +65,7 @@ def test_a_block_of_rows_is_the_same_whatever_was_rendered_before_it(tmp_path):
     # process makes them, or first, as a worker that takes that block first makes them
     integrator = RandomGrey(str(tmp_path / "img"))
     integrator.add_scene(fov90_scene(6, 5))
-    rows = CourseRows(1, RowStreams(99))
+    rows = CourseRows(RowStreams(99), Integrator.render.loop)
     in_order = render_block(integrator, 0, 5, rows)
     random.random()
     assert np.array_equal(render_block(integrator, 3, 5, rows), in_order[3:])

@@ -10,12 +10,13 @@ import pytest
 import pyrt.rows
 import pyrt.sampling
 from AppRenderer import sphere_test_scene
-from make_references import SAMPLED_REFERENCE, SAMPLED_REFERENCE_SIZE
+from tools.make_references import SAMPLED_REFERENCE, SAMPLED_REFERENCE_SIZE
 from helpers import (GREY, PNG_TOLERANCE, ConstantGrey, PixelGrey, StepAt, fov90_scene,
                      image_point, read_png, render_image, small_cornell_box)
 from PyRT_Common import plt
 from PyRT_Core import *
 from PyRT_Integrators import *
+from pyrt.rendering import render_loop
 
 
 # ------------------------------------------------------------------------------------------
@@ -57,27 +58,34 @@ def test_error_against_a_high_sample_reference_shrinks_with_more_samples(tmp_pat
     assert errors[3] < errors[0] / 8, errors
 
 
-class PhongAroundRenderRow(PhongIntegrator):
-    """Phong making its rows itself, with Integrator.render_row, as an override that adds
-    something around each row does; counts its rows."""
+class PhongRowsOutside(PhongIntegrator):
+    """Phong with a render loop of its own under render_loop, rows outside and columns
+    inside, as some students write it; counts the tasks it runs."""
 
     def __init__(self, filename_):
         super().__init__(filename_)
-        self.rows = 0
+        self.tasks = 0
 
-    def render_row(self, y, samples_per_pixel=1):
-        self.rows += 1
-        return super().render_row(y, samples_per_pixel)
+    @render_loop
+    def render(self):
+        self.tasks += 1
+        cam = self.scene.camera
+        for y in range(cam.height):
+            for x in range(cam.width):
+                ray = Ray(Vector3D(0.0, 0.0, 0.0), cam.get_direction(x, y), INFINITY, 0.0)
+                self.scene.set_pixel(self.compute_color(ray), x, y)
+        self.scene.save_image(self.get_filename())
 
 
-def test_render_row_with_several_samples_gives_the_pixels_of_the_anti_aliased_image(tmp_path):
-    # Integrator.render_row(y, N) averages the same jittered rays as render(N) does, summed
-    # in the same order: the images agree bit for bit.
+def test_a_loop_of_its_own_with_several_samples_gives_the_pixels_of_the_anti_aliased_image(
+        tmp_path):
+    # the loop runs once per row with the row's N jittered rays in each pixel, and their
+    # colours are summed in the order of the cells: the images agree bit for bit
     uniform = render_image(PhongIntegrator(str(tmp_path / "uniform")), small_cornell_box(12),
                            workers=1, samples_per_pixel=4)
-    integrator = PhongAroundRenderRow(str(tmp_path / "own"))
+    integrator = PhongRowsOutside(str(tmp_path / "own"))
     image = render_image(integrator, small_cornell_box(12), workers=1, samples_per_pixel=4)
-    assert integrator.rows == 12
+    assert integrator.tasks == 12
     assert np.array_equal(image, uniform)
     centre = render_image(PhongIntegrator(str(tmp_path / "centre")), small_cornell_box(12),
                           workers=1)
@@ -93,33 +101,40 @@ class WhiteAtPixelCentres(Integrator):
         return WHITE if centre else BLACK
 
 
-def test_render_row_gives_row_y_flat_from_the_centre_rays_or_from_n_samples(tmp_path):
-    grey = PixelGrey(str(tmp_path / "img"))
-    grey.add_scene(fov90_scene(3, 2))
-    assert grey.render_row(1) == [0.1, 0.1, 0.1, 0.11, 0.11, 0.11, 0.12, 0.12, 0.12]
-    centres = WhiteAtPixelCentres(str(tmp_path / "img"))
-    centres.add_scene(fov90_scene(3, 2))
-    assert centres.render_row(1) == [1.0] * 9  # the rays through the centres, by default
+def test_render_gives_the_centre_rays_colours_or_the_average_of_n_samples(tmp_path):
+    grey = render_image(PixelGrey(str(tmp_path / "img")), fov90_scene(3, 2), workers=1)
+    assert grey[1].tolist() == [[0.1] * 3, [0.11] * 3, [0.12] * 3]
+    centres = render_image(WhiteAtPixelCentres(str(tmp_path / "img")), fov90_scene(3, 2),
+                           workers=1)
+    assert centres.tolist() == [[[1.0] * 3] * 3] * 2  # the rays through the centres
     # two samples: one in the left half of each pixel (white), one in the right (black)
-    halves = LeftHalfWhite(str(tmp_path / "img"))
-    halves.add_scene(fov90_scene(3, 2))
-    assert halves.render_row(1, 2) == [0.5] * 9
+    halves = render_image(LeftHalfWhite(str(tmp_path / "img")), fov90_scene(3, 2), workers=1,
+                          samples_per_pixel=2)
+    assert halves.tolist() == [[[0.5] * 3] * 3] * 2
 
 
-def test_sampled_pixels_gives_colour_and_error_of_the_pixels_asked_for_zeros_elsewhere(
+def sampled_row(integrator, y, samples, refined):
+    """Row y of the pass of samples rays in the pixels that refined marks, as a task makes
+    it: per pixel the average colour and the estimated squared error of each channel."""
+    rows = pyrt.rows.SampledRows(samples, pyrt.rows.RowStreams(0), Integrator.render.loop,
+                                 refined=np.array(refined))
+    return pyrt.rows.render_block(integrator, y, y + 1, rows)[0]
+
+
+def test_sampled_rows_give_colour_and_error_of_the_pixels_asked_for_zeros_elsewhere(
         tmp_path):
     # LeftHalfWhite with N = 2: mean 1/2 and one pair differing by 1, error 1 / (4 sqrt(2))
     integrator = LeftHalfWhite(str(tmp_path / "img"))
     integrator.add_scene(fov90_scene(3, 2))
-    row = pyrt.rows.sampled_pixels(integrator, 1, 2, [1])
+    row = sampled_row(integrator, 1, 2, [[False] * 3, [False, True, False]])
     error = 1 / (4 * math.sqrt(2))
-    assert row[:6] == [0.0] * 6 and row[12:] == [0.0] * 6
-    assert row[6:12] == pytest.approx([0.5] * 3 + [error] * 3, rel=1e-15)
+    assert row[0].tolist() == row[2].tolist() == [0.0] * 6
+    assert row[1].tolist() == pytest.approx([0.5] * 3 + [error] * 3, rel=1e-15)
     # one sample per pixel: no pair of samples, no spread to estimate an error from
     grey = PixelGrey(str(tmp_path / "img"))
     grey.add_scene(fov90_scene(3, 2))
-    row = pyrt.rows.sampled_pixels(grey, 1, 1, [0, 1, 2])
-    assert row[3:6] == row[9:12] == row[15:18] == [0.0] * 3
+    row = sampled_row(grey, 1, 1, [[True] * 3] * 2)
+    assert row[:, 3:].tolist() == [[0.0] * 3] * 3
 
 
 @pytest.mark.parametrize("samples", [1, 4])
@@ -593,8 +608,8 @@ def test_integrator_making_its_own_rows_renders_them_uniformly_and_says_why(tmp_
                          workers=1, samples_per_pixel=4, adaptive=True)
     assert image[1, 3] == pytest.approx([3 / 4, 1 / 2, 0.0])
     captured = capfd.readouterr()
-    assert captured.err == ("PyRT: LazyIntegrator makes its rows itself (it overrides "
-                            "render_row), so adaptive sampling cannot choose its rays: every "
+    assert captured.err == ("PyRT: LazyIntegrator renders its pixels itself (a render loop "
+                            "of its own), so adaptive sampling cannot choose its rays: every "
                             "pixel gets 4\n")
     assert captured.out == saved(tmp_path / "img_Lazy.png") + NO_ESTIMATE
     assert not (tmp_path / "img_Lazy_accuracy.json").exists()
@@ -605,8 +620,8 @@ def saved(png):
     return f"Saved {png} (and .npy, .hdr)\n"
 
 
-NO_ESTIMATE = ("No error estimate: LazyIntegrator makes its rows itself (it overrides "
-               "render_row), so PyRT does not see its samples\n")
+NO_ESTIMATE = ("No error estimate: LazyIntegrator renders its pixels itself (a render loop "
+               "of its own), so PyRT does not see its samples\n")
 
 
 def test_integrator_making_its_own_rows_says_only_that_its_error_is_not_estimated(tmp_path,

@@ -1,7 +1,7 @@
 """The rules the test files keep, so that a red test means what it says: every match=
 pattern is a regular expression written as one or quoted text escaped with re.escape,
 helpers are defined once (in helpers.py), no test file is over MAX_TEST_FILE_LINES, and
-tests/hunt_flaky.py, which hunts for tests that fail by chance, reports every test that
+tools/hunt_flaky.py, which hunts for tests that fail by chance, reports every test that
 failed with the seed of its run."""
 import ast
 import io
@@ -9,7 +9,7 @@ import multiprocessing
 import re
 import tokenize
 
-import hunt_flaky
+import tools.hunt_flaky as hunt_flaky
 from helpers import REPO, run_python
 
 TESTS = REPO / "tests"
@@ -149,8 +149,9 @@ def test_hunt_flaky_reports_each_failed_test_with_the_seeds_of_its_runs(tmp_path
     tests = tmp_path / "test_sample.py"
     tests.write_text(SAMPLE_TESTS)
     # --rootdir: test ids relative to tmp_path, wherever the repository lies
-    result = run_python([TESTS / "hunt_flaky.py", "--runs", 2, "--load", 0, "--seed", 7,
-                         f"--rootdir={tmp_path}", tests], cwd=tmp_path)
+    report = tmp_path / "report.txt"
+    result = run_python([REPO / "tools" / "hunt_flaky.py", "--runs", 2, "--load", 0, "--seed",
+                         7, "--report", report, f"--rootdir={tmp_path}", tests], cwd=tmp_path)
     output = result.stdout + result.stderr  # what a failure shows: stderr says why
     assert result.returncode == 1, output
     lines = result.stdout.splitlines()
@@ -167,10 +168,11 @@ def test_hunt_flaky_reports_each_failed_test_with_the_seeds_of_its_runs(tmp_path
                          "-p no:randomly "
                          "--random-order-bucket=global --random-order-seed=7 "
                          f"--hypothesis-seed=7 --rootdir={tmp_path} {tests}")
+    assert report.read_text(encoding="utf-8") == result.stdout  # where git does not look
 
 
 def test_hunt_flaky_exits_0_when_every_run_is_green_and_stops_its_busy_processes(
-        monkeypatch, capsys):
+        monkeypatch, capsys, tmp_path):
     runs = []
 
     def green_run(seed, pytest_args, folder):
@@ -178,7 +180,8 @@ def test_hunt_flaky_exits_0_when_every_run_is_green_and_stops_its_busy_processes
         return [], "5 passed in 0.01s", 0.01
 
     monkeypatch.setattr(hunt_flaky, "run_pytest", green_run)
-    assert hunt_flaky.main(["--runs", "2", "--load", "1", "--seed", "3", "-k", "x"]) == 0
+    assert hunt_flaky.main(["--runs", "2", "--load", "1", "--seed", "3", "--report",
+                            str(tmp_path / "report.txt"), "-k", "x"]) == 0
     assert runs == [(3, ["-k", "x"]), (4, ["-k", "x"])]
     out = capsys.readouterr().out
     assert "2 run(s) in random order with 1 busy process(es): 2 green, 0 red" in out

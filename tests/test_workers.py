@@ -242,7 +242,7 @@ def run_worker(integrator, blocks, taken_before=0):
     ctrl_c = signal.getsignal(signal.SIGINT)
     try:
         pyrt.workers._worker(pickle.dumps(integrator), blocks,
-                             pyrt.rows.CourseRows(1, pyrt.rows.RowStreams(0)), shared, sender)
+                             pyrt.rows.CourseRows(pyrt.rows.RowStreams(0), Integrator.render.loop), shared, sender)
         worker_ctrl_c = signal.getsignal(signal.SIGINT)
     finally:
         signal.signal(signal.SIGINT, ctrl_c)
@@ -342,23 +342,26 @@ from AppRenderer import cornell_box_scene
 class DistanceAndIndex(Integrator):
     def __init__(self, filename_):
         super().__init__(filename_ + "_DistanceAndIndex")
+        self.held_back = False
 
     def compute_color(self, ray):
+        if not self.held_back:  # once per process
+            self.held_back = True
+            hold_back()
         hit = self.scene.closest_hit(ray)
         if not hit.has_hit:
             return BLACK
         return RGBColor(1.0 / hit.hit_distance, hit.primitive_index / 10.0, 0.5)
 
-    def render_row(self, y, samples_per_pixel=1):
-        row = super().render_row(y, samples_per_pixel)
-        if multiprocessing.parent_process() is not None:  # a worker process
-            open("worker_rendered", "a").close()
-        else:
-            deadline = time.monotonic() + 300  # only so that a hung worker cannot hang it
-            while (multiprocessing.active_children() and not os.path.exists("worker_rendered")
-                   and time.monotonic() < deadline):
-                time.sleep(0.005)
-        return row
+
+def hold_back():
+    if multiprocessing.parent_process() is not None:  # a worker process
+        open("worker_rendered", "a").close()
+    else:
+        deadline = time.monotonic() + 300  # only so that a hung worker cannot hang it
+        while (multiprocessing.active_children() and not os.path.exists("worker_rendered")
+               and time.monotonic() < deadline):
+            time.sleep(0.005)
 '''
 
 GUARDED_SPAWN_SCRIPT = OWN_INTEGRATOR + '''

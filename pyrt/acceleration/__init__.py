@@ -5,9 +5,9 @@ object's ``intersect(ray)``, the nearest hit kept. They are what students read a
 and they run whenever code of a student's own could be involved. During a render,
 ``accelerated(integrator)`` stands in for the two methods of a scene of PyRT's own classes
 with those of ``AcceleratedQueries``, for ``PhongIntegrator.compute_color`` with that of
-``AcceleratedPhong`` and for ``CMCIntegrator.compute_color`` with that of
-``AcceleratedCMC`` (the same draws of random(), in the same order); all give the plain
-code's answers, bit for bit, faster:
+``AcceleratedPhong``, for ``CMCIntegrator.compute_color`` with that of ``AcceleratedCMC``
+and for the Bayesian integrators' with that of ``AcceleratedBMC`` (the same draws of
+random(), in the same order); all give the plain code's answers, bit for bit, faster:
 
 - scalar fast paths: the intersection tests of Sphere, InfinitePlane and Parallelogram
   (pyrt/scalar_intersections.py) and the Phong sum, written out on plain floats in the
@@ -38,6 +38,7 @@ The modules, each on one concern, in the order they import each other:
     queries        AcceleratedQueries: closest_hit and any_hit on plain floats
     phong          AcceleratedPhong: PhongIntegrator.compute_color on plain floats
     monte_carlo    AcceleratedCMC: CMCIntegrator.compute_color on plain floats
+    bayesian       AcceleratedBMC, AcceleratedBMCIS: the Bayesian integrators' compute_color
     accelerated    the with-block that stands them in for a render (accelerated, plain)
 
 `python -m pyrt.acceleration` prints the fingerprints of the functions as they are now

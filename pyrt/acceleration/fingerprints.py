@@ -1,7 +1,9 @@
 """Which functions the fast paths repeat, and whether they are still what they were when
-the fast paths were proven equal to them: fingerprints of their source, and the
+the fast paths were proven equal to them: fingerprints of their code (not of their
+docstrings and comments, whose wording changes nothing they do), and the
 integrators (Phong, classic and Bayesian Monte Carlo) that a fused version may stand in
 for, which their own module registers."""
+import ast
 import hashlib
 import inspect
 import sys
@@ -15,93 +17,93 @@ from PyRT_Core import InfinitePlane, Parallelogram, Sphere
 # equal to them (tests/test_acceleration.py). One replaced, by assignment or by editing
 # its source in place, is not stood in for: the fast paths give way to the plain code.
 QUERY_FUNCTIONS = {
-    "PyRT_Core.Scene.closest_hit": "b8f3be4604f3fb81",
-    "PyRT_Core.Scene.any_hit": "b4260ae7059b6f3d",
-    "PyRT_Core.unit_direction": "a918a0f2d2309304",
-    "PyRT_Core.course_direction": "64a22aa7e6fffb14",
-    "PyRT_Core.plane_hit_point": "fb8e16be5e26a818",
-    "PyRT_Core.plane_distance": "0654dba6f824c144",
-    "PyRT_Common.Ray.get_hitpoint": "4226c57767ef8a26",
-    "PyRT_Core.Normalize": "41257e0e7f7f37cd",
-    "PyRT_Core.Length": "4b4d97bb903012e7",
-    "PyRT_Core.Dot": "5968b1bc66a4e991",
-    "PyRT_Common.unit_components": "4fddd540ec7253a7",
-    "PyRT_Common.euclidean_length": "ed684f71ac87a76c",
+    "PyRT_Core.Scene.closest_hit": "58fe69200c5959a7",
+    "PyRT_Core.Scene.any_hit": "9107f59cd738ce4b",
+    "PyRT_Core.unit_direction": "4255ce1eebb36602",
+    "PyRT_Core.course_direction": "9a705656ecc58950",
+    "PyRT_Core.plane_hit_point": "2313766aec2173d5",
+    "PyRT_Core.plane_distance": "be621b7a73d0501c",
+    "PyRT_Common.Ray.get_hitpoint": "6a3b941cc734a077",
+    "PyRT_Core.Normalize": "4e0d7b65981f7e18",
+    "PyRT_Core.Length": "8b4dc7f8cfbe67d3",
+    "PyRT_Core.Dot": "b0580826f7affd8f",
+    "PyRT_Common.unit_components": "8122dd21893d8e28",
+    "PyRT_Common.euclidean_length": "17e7f9d481206d68",
 }
 INTERSECT_FUNCTIONS = {  # each stood in for only while it is unchanged
-    Sphere: ("PyRT_Core.Sphere.intersect", "2677b580cdc27c92"),
-    InfinitePlane: ("PyRT_Core.InfinitePlane.intersect", "f84fd7ab7eb74ab0"),
-    Parallelogram: ("PyRT_Core.Parallelogram.intersect", "a8a4f043cdad8e4d"),
+    Sphere: ("PyRT_Core.Sphere.intersect", "5bcd8d685e9a02a6"),
+    InfinitePlane: ("PyRT_Core.InfinitePlane.intersect", "84172fca9d1318f7"),
+    Parallelogram: ("PyRT_Core.Parallelogram.intersect", "615f8d9c8d40da54"),
 }
 # PhongIntegrator.compute_color and what it calls from its own module, named as that module
 # names them: looked up in the module of the Phong integrator registered (register_fused)
 PHONG_FUNCTIONS = {
-    "PhongIntegrator.compute_color": "4c6b5443bdfb642b",
-    "shadow_ray": "32ca8d4a3ead2a3b",
-    "Length": "4b4d97bb903012e7",
-    "Dot": "5968b1bc66a4e991",
+    "PhongIntegrator.compute_color": "830011959174f404",
+    "shadow_ray": "ef4f0001280c5f94",
+    "Length": "8b4dc7f8cfbe67d3",
+    "Dot": "b0580826f7affd8f",
 }
 PHONG_CALLS = {  # what PhongIntegrator.compute_color calls of the modules beneath it
-    "PyRT_Core.Primitive.get_BRDF": "5009389ae19f8874",
-    "PyRT_Core.Lambertian.get_value": "4a56e9c61b6d4186",
-    "PyRT_Common.Ray.__init__": "308e8987ef15745f",
-    "PyRT_Common.Vector3D.__sub__": "a7b23b59990f357e",
-    "PyRT_Common.Vector3D.__mul__": "566dee40a844b2a9",
-    "PyRT_Common.Vector3D.__truediv__": "4dc8cc15c2a222b9",
-    "PyRT_Common.RGBColor.__add__": "126ec3224ad46034",
-    "PyRT_Common.RGBColor.__mul__": "8e0ca007b4e3bfe8",
-    "PyRT_Common.RGBColor.__truediv__": "85e151eb11f94b85",
-    "PyRT_Common.RGBColor.multiply": "db6e9f232b4675f8",
+    "PyRT_Core.Primitive.get_BRDF": "5b51817f668590c1",
+    "PyRT_Core.Lambertian.get_value": "49c4f4efded29f98",
+    "PyRT_Common.Ray.__init__": "fe3ed9dc7a88556a",
+    "PyRT_Common.Vector3D.__sub__": "f71839dd2a08f91a",
+    "PyRT_Common.Vector3D.__mul__": "9d9c56e1bc943543",
+    "PyRT_Common.Vector3D.__truediv__": "e3c12859e6e0b56e",
+    "PyRT_Common.RGBColor.__add__": "9be1c6822a714e5c",
+    "PyRT_Common.RGBColor.__mul__": "b0e55e66354bf902",
+    "PyRT_Common.RGBColor.__truediv__": "1206d8380a5657ac",
+    "PyRT_Common.RGBColor.multiply": "f71c9682e17487cb",
 }
 # CMCIntegrator.compute_color and what it calls, as for Phong
 CMC_FUNCTIONS = {
-    "CMCIntegrator.compute_color": "dfa850a62a68c949",
-    "Integrator.incoming_light": "0fdae8403b738c7e",
-    "sample_set_hemisphere": "96811dd0dbd0d5fd",
-    "center_around_normal": "35252ba91566888f",
-    "UniformPDF.get_val": "c96ffa7b144b10b6",
-    "UniformPDF.generate_dir": "5c490cc04585c51c",
-    "CosinePDF.get_val": "016d6a63042db3b3",
-    "CosinePDF.generate_dir": "3674677286641a5c",
-    "Dot": "5968b1bc66a4e991",
-    "Normalize": "41257e0e7f7f37cd",
-    "Cross": "231231219460270a",
+    "CMCIntegrator.compute_color": "4bbdad6354d6d0d8",
+    "Integrator.incoming_light": "8a6e174cf11ff580",
+    "sample_set_hemisphere": "8dc0c1a4b5c85e0e",
+    "center_around_normal": "02bb7e079fb76f12",
+    "UniformPDF.get_val": "d7dae845af7d6099",
+    "UniformPDF.generate_dir": "b3163f41abdf49ce",
+    "CosinePDF.get_val": "9ecf50333845530e",
+    "CosinePDF.generate_dir": "eaa2a1f5eb946f6e",
+    "Dot": "b0580826f7affd8f",
+    "Normalize": "4e0d7b65981f7e18",
+    "Cross": "32f98e5e40676616",
 }
 CMC_CALLS = {
-    "PyRT_Core.Primitive.get_BRDF": "5009389ae19f8874",
-    "PyRT_Core.Lambertian.get_value": "4a56e9c61b6d4186",
-    "PyRT_Common.EnvironmentMap.getValue": "c10cca36338c7e73",
-    "PyRT_Common.EnvironmentMap.euclideanToLatLong": "668772b80c629197",
-    "PyRT_Common.unit_components": "4fddd540ec7253a7",
-    "PyRT_Common.Ray.__init__": "308e8987ef15745f",
-    "PyRT_Common.Vector3D.__init__": "b493185bd8c49e96",
-    "PyRT_Common.Vector3D.__add__": "49d113308126edbd",
-    "PyRT_Common.Vector3D.__mul__": "566dee40a844b2a9",
-    "PyRT_Common.RGBColor.__init__": "21b84a3a382253a2",
-    "PyRT_Common.RGBColor.__add__": "126ec3224ad46034",
-    "PyRT_Common.RGBColor.__truediv__": "85e151eb11f94b85",
-    "PyRT_Common.RGBColor.multiply": "db6e9f232b4675f8",
+    "PyRT_Core.Primitive.get_BRDF": "5b51817f668590c1",
+    "PyRT_Core.Lambertian.get_value": "49c4f4efded29f98",
+    "PyRT_Common.EnvironmentMap.getValue": "8519365ebbec49ad",
+    "PyRT_Common.EnvironmentMap.euclideanToLatLong": "f4b3cd7d60f135ec",
+    "PyRT_Common.unit_components": "8122dd21893d8e28",
+    "PyRT_Common.Ray.__init__": "fe3ed9dc7a88556a",
+    "PyRT_Common.Vector3D.__init__": "d210fb32c4d2ffc0",
+    "PyRT_Common.Vector3D.__add__": "0c58ebe2d5e388e3",
+    "PyRT_Common.Vector3D.__mul__": "9d9c56e1bc943543",
+    "PyRT_Common.RGBColor.__init__": "d58fa7e4e3e1be24",
+    "PyRT_Common.RGBColor.__add__": "9be1c6822a714e5c",
+    "PyRT_Common.RGBColor.__truediv__": "1206d8380a5657ac",
+    "PyRT_Common.RGBColor.multiply": "f71c9682e17487cb",
 }
 # BayesianMonteCarloIntegrator.compute_color and what it calls, as for Phong; the GP's
 # add_sample_val and compute_integral_BMC are called by the fused version too, not repeated
 BMC_FUNCTIONS = {
-    "BayesianMonteCarloIntegrator.compute_color": "2533396463c3491a",
-    "BayesianMonteCarloIntegrator.pick_sample_set": "d9bee35e840dfc0e",
-    "BayesianMonteCarloIntegrator.sample_value": "a11f784f8639baf6",
-    "Integrator.incoming_light": "0fdae8403b738c7e",
-    "center_around_normal": "35252ba91566888f",
-    "rotate_around_y": "7dc88a64ef41cc6c",
-    "Normalize": "41257e0e7f7f37cd",
-    "Cross": "231231219460270a",
+    "BayesianMonteCarloIntegrator.compute_color": "6c9a947b2482131e",
+    "BayesianMonteCarloIntegrator.pick_sample_set": "ccab0fd69e7bc3c7",
+    "BayesianMonteCarloIntegrator.sample_value": "f50b893bb7b84347",
+    "Integrator.incoming_light": "8a6e174cf11ff580",
+    "center_around_normal": "02bb7e079fb76f12",
+    "rotate_around_y": "66b1685ec30beeea",
+    "Normalize": "4e0d7b65981f7e18",
+    "Cross": "32f98e5e40676616",
 }
 BMC_CALLS = dict(CMC_CALLS)  # the same methods of the vectors, colours, BRDF and map
 # BMCISIntegrator's: BayesianMonteCarloIntegrator's, with values of its own
-BMCIS_FUNCTIONS = dict(BMC_FUNCTIONS, **{"BMCISIntegrator.sample_value": "dc976d52942d97cb"})
+BMCIS_FUNCTIONS = dict(BMC_FUNCTIONS, **{"BMCISIntegrator.sample_value": "50cf7ab5d593dd94"})
 # PyRT's GP (GaussianProcess.py), whose compute_integral_BMC the fused Bayesian Monte Carlo
 # repeats, and whose add_sample_val it leaves out for finite values, which it accepts
 GP_FUNCTIONS = {
-    "GP.compute_integral_BMC": "0e84c33a3f1fc0f4",
-    "GP.add_sample_val": "ebf8fb32be7e7bec",
+    "GP.compute_integral_BMC": "6dd75cd7e173656e",
+    "GP.add_sample_val": "8b9c3478701a699c",
 }
 # The integrators whose compute_color a fused version repeats, by name: the functions of
 # their own module (looked up there) and of the modules beneath it
@@ -139,13 +141,36 @@ def current(name, namespace=None):
 
 @lru_cache(maxsize=None)
 def fingerprint(function) -> str:
-    """The first 16 hexadecimal digits of the SHA-256 of a function's source (dedented);
-    '' when its source cannot be read."""
+    """The first 16 hexadecimal digits of the SHA-256 of a function's code: its syntax
+    tree without docstrings (code_text), so that comments, docstrings and layout leave it
+    unchanged; '' when its source cannot be read."""
     try:
-        source = textwrap.dedent(inspect.getsource(function))
-    except (OSError, TypeError):
+        tree = ast.parse(textwrap.dedent(inspect.getsource(function)))
+    except (OSError, TypeError, SyntaxError):
         return ""
-    return hashlib.sha256(source.encode()).hexdigest()[:16]
+    return hashlib.sha256(code_text(tree).encode()).hexdigest()[:16]
+
+
+def code_text(node) -> str:
+    """A syntax tree as text, docstrings left out: each node's type and its fields, those
+    that are None or empty left out, so that the text is the same on every Python the
+    project supports (their trees differ in such optional fields)."""
+    if isinstance(node, list):
+        return "[" + ", ".join(code_text(item) for item in _without_docstring(node)) + "]"
+    if not isinstance(node, ast.AST):
+        return repr(node)
+    # a name's context (Load, Store, Del) left out too: its place in the tree says which
+    fields = [f"{name}={code_text(value)}" for name, value in ast.iter_fields(node)
+              if value is not None and value != [] and not isinstance(value, ast.expr_context)]
+    return f"{type(node).__name__}({', '.join(fields)})"
+
+
+def _without_docstring(body):
+    """A list of statements without its first when that is a string alone (a docstring)."""
+    if (body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant)
+            and isinstance(body[0].value.value, str)):
+        return body[1:]
+    return body
 
 
 # The integrator classes whose compute_color a fused version repeats, once their module has

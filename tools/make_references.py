@@ -31,7 +31,7 @@ the change in the commit message.
 
 Run it from the repository's root folder:
 
-    python tests/make_references.py [--course-renders ../shared/course-renders]
+    python tools/make_references.py [--course-renders ../shared/course-renders]
 """
 import argparse
 import shutil
@@ -40,10 +40,11 @@ import tempfile
 from pathlib import Path
 from typing import NamedTuple, Optional
 
-TESTS = Path(__file__).resolve().parent
-REPO = TESTS.parent
-if str(REPO) not in sys.path:
-    sys.path.insert(0, str(REPO))
+REPO = Path(__file__).resolve().parent.parent
+TESTS = REPO / "tests"
+for folder in (REPO, TESTS):  # the repository's modules, and the tests' helpers
+    if str(folder) not in sys.path:
+        sys.path.insert(0, str(folder))
 
 import numpy as np  # noqa: E402
 

@@ -4,15 +4,16 @@ reports each test that failed in any run together with the seeds that order it s
 
 From the repository's folder, after `pip install -r requirements-dev.txt`:
 
-    python tests/hunt_flaky.py                        # 10 runs of the whole suite
-    python tests/hunt_flaky.py --runs 20 tests/test_rendering.py
-    python tests/hunt_flaky.py --each-file --runs 3   # every test file alone
-    python tests/hunt_flaky.py --load 0               # no busy processes
+    python tools/hunt_flaky.py                        # 10 runs of the whole suite
+    python tools/hunt_flaky.py --runs 20 tests/test_rendering.py
+    python tools/hunt_flaky.py --each-file --runs 3   # every test file alone
+    python tools/hunt_flaky.py --load 0               # no busy processes
 
 Arguments it does not know go to pytest (files, -k EXPRESSION, ...). A run's seed sets
 both the order of the tests and the examples Hypothesis draws, and every run starts from
 an empty Hypothesis database, as CI does, so a failing run can be ordered again with the
-command printed at the end. It exits with 0 when every run was green, 1 otherwise.
+command printed at the end. It exits with 0 when every run was green, 1 otherwise. What
+it prints also goes to out/hunt_flaky.txt (--report), where git does not look.
 docs/maintaining.md says when to run it and what it found last.
 
 The file is also the pytest plugin (`-p hunt_flaky`) through which each run writes down
@@ -29,8 +30,10 @@ import tempfile
 import time
 from pathlib import Path
 
-TESTS = Path(__file__).resolve().parent
-REPO = TESTS.parent
+TOOLS = Path(__file__).resolve().parent
+REPO = TOOLS.parent
+TESTS = REPO / "tests"
+REPORT = REPO / "out" / "hunt_flaky.txt"  # out/ is the user's, ignored by git
 REPORT_VARIABLE = "HUNT_FLAKY_REPORT"  # where the plugin writes a run's failures
 PROFILE_VARIABLE = "PYRT_HYPOTHESIS_PROFILE"
 # Only there so that a run that hangs cannot hold the hunt for ever.
@@ -79,7 +82,7 @@ def run_pytest(seed, pytest_args, folder):
     env = dict(os.environ)
     env[REPORT_VARIABLE] = str(report)
     env["PYTHONPATH"] = os.pathsep.join(
-        [str(TESTS)] + ([env["PYTHONPATH"]] if env.get("PYTHONPATH") else []))
+        [str(TOOLS)] + ([env["PYTHONPATH"]] if env.get("PYTHONPATH") else []))
     # an empty example database: a failure Hypothesis stored in an earlier run would
     # otherwise be replayed first, whatever this run's seed
     env["HYPOTHESIS_STORAGE_DIRECTORY"] = str(folder / "hypothesis")
@@ -124,6 +127,9 @@ def parse_arguments(argv):
     parser.add_argument("--seed", type=int, default=None,
                         help="the seed of the first run, the next runs take the numbers "
                              "after it (default: chosen at random and printed)")
+    parser.add_argument("--report", type=Path, default=REPORT,
+                        help="the file that gets what the hunt prints (default: "
+                             "out/hunt_flaky.txt)")
     parser.add_argument("--each-file", action="store_true",
                         help="run every test file alone, in a pytest of its own, in each run")
     options, pytest_args = parser.parse_known_args(argv)
@@ -134,6 +140,18 @@ def parse_arguments(argv):
 
 def main(argv=None):
     options, pytest_args = parse_arguments(sys.argv[1:] if argv is None else argv)
+    options.report.parent.mkdir(parents=True, exist_ok=True)
+    with open(options.report, "w", encoding="utf-8") as report:
+        def say(text):
+            print(text, flush=True)
+            report.write(text + "\n")
+            report.flush()
+
+        return hunt(options, pytest_args, say)
+
+
+def hunt(options, pytest_args, say):
+    """The runs of main, with what they tell given to say (one line or more at a time)."""
     try:
         import random_order  # noqa: F401  (pytest-random-order, the plugin that shuffles)
     except ImportError:
@@ -150,8 +168,8 @@ def main(argv=None):
     load = [spawn.Process(target=keep_busy, daemon=True) for _ in range(options.load)]
     for process in load:
         process.start()
-    print(f"{options.runs} run(s) from seed {first}, {options.load} busy process(es) "
-          f"on {usable_cores()} core(s)", flush=True)
+    say(f"{options.runs} run(s) from seed {first}, {options.load} busy process(es) "
+        f"on {usable_cores()} core(s)")
     failed = {}  # test id: [seeds]
     red = 0
     first_red = None  # (seed, pytest arguments) of the first red run
@@ -165,10 +183,10 @@ def main(argv=None):
                     run_folder.mkdir()
                     failures, last, seconds = run_pytest(seed, args, run_folder)
                     what = " ".join(args) or "the suite"
-                    print(f"run {run + 1}/{options.runs}, seed {seed}, {what}: {last} "
-                          f"({seconds:.1f} s of wall time)", flush=True)
+                    say(f"run {run + 1}/{options.runs}, seed {seed}, {what}: {last} "
+                        f"({seconds:.1f} s of wall time)")
                     for test, when in failures:
-                        print(f"    FAILED {test} ({when})", flush=True)
+                        say(f"    FAILED {test} ({when})")
                     for test in dict.fromkeys(test for test, _ in failures):
                         failed.setdefault(test, []).append(seed)
                     if failures and first_red is None:
@@ -180,16 +198,16 @@ def main(argv=None):
             process.terminate()
         for process in load:
             process.join()
-    print(f"\n{options.runs} run(s) in random order with {options.load} busy process(es): "
-          f"{options.runs - red} green, {red} red")
+    say(f"\n{options.runs} run(s) in random order with {options.load} busy process(es): "
+        f"{options.runs - red} green, {red} red")
     for test, seeds in sorted(failed.items()):
-        print(f"  {test}: failed in {len(seeds)} of {options.runs} run(s), seed(s) "
-              f"{', '.join(map(str, seeds))}")
+        say(f"  {test}: failed in {len(seeds)} of {options.runs} run(s), seed(s) "
+            f"{', '.join(map(str, seeds))}")
     if first_red:
         seed, args = first_red
-        print("The tests of the first red run, in its order (scheduling and load are not "
-              f"repeated):\n    {PROFILE_VARIABLE}=hunt python -m pytest "
-              + " ".join(run_arguments(seed, args)))
+        say("The tests of the first red run, in its order (scheduling and load are not "
+            f"repeated):\n    {PROFILE_VARIABLE}=hunt python -m pytest "
+            + " ".join(run_arguments(seed, args)))
     return 1 if red else 0
 
 

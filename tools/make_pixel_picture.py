@@ -9,15 +9,16 @@ the commit message.
 
 Run it from the repository's root folder:
 
-    python tests/make_pixel_picture.py
+    python tools/make_pixel_picture.py
 """
 import sys
 from pathlib import Path
 
-TESTS = Path(__file__).resolve().parent
-REPO = TESTS.parent
-if str(REPO) not in sys.path:
-    sys.path.insert(0, str(REPO))
+REPO = Path(__file__).resolve().parent.parent
+TESTS = REPO / "tests"
+for folder in (REPO, TESTS):  # the repository's modules, and the tests' helpers
+    if str(folder) not in sys.path:
+        sys.path.insert(0, str(folder))
 
 from AppRenderer import sphere_test_scene  # noqa: E402  (needs the repository on the path)
 from helpers import ShadowRayFrom  # noqa: E402

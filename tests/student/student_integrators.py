@@ -1,6 +1,7 @@
 # A Practice 1 solution written against the course's base code, as a student hands it in:
 # the rendering loop of Assignment 1.1 and the five integrators, in the student's own
-# PyRT_Integrators.py. tests/test_integrators.py runs it unchanged on PyRT.
+# PyRT_Integrators.py, stored here under another name so that it shadows nothing: the
+# test that runs it (tests/test_integrators.py) copies it in as PyRT_Integrators.py.
 from PyRT_Common import *
 from abc import ABC, abstractmethod
 
