@@ -180,6 +180,15 @@ def _tell_story(check, step, trial, server, workdir, scratch, limits):
     return trial.story(check.name, *check.story_pixel) if check.story else ""
 
 
+@dataclass(frozen=True)
+class DataTrial:
+    """What a grading asks of the student's code in a practice whose checks judge data
+    alone (Practices 2 to 4): the Draw handed to the step's process, drawn at grading time
+    (what is expected follows from it)."""
+
+    draw: object
+
+
 def judge_data_step(checks, render_name, rendered_from, expected_arrays, step, trial,
                     server, workdir, scratch, limits):
     """judge_step of a practice whose checks judge data alone (Practices 2 to 4): the

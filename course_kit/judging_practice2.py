@@ -12,13 +12,12 @@ statistical checks of 2.3 hold for any seed: it makes the kit's own tests repeat
 themselves, and, drawn at grading time, nothing a submission can foresee.
 """
 import sys
-from dataclasses import dataclass
 
 import numpy as np
 
 import course_kit.handout
 from course_kit.practices import PRACTICES
-from course_kit.judging import judge_data_step
+from course_kit.judging import DataTrial, judge_data_step
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice2_checks as checks  # noqa: E402  (found through the line above)
@@ -29,12 +28,7 @@ RENDER = PRACTICES[2].render  # the step process's render module
 DRAWN_SIZES = tuple(range(scenes.SIZE - 4, scenes.SIZE + 5))
 
 
-@dataclass(frozen=True)
-class Trial:
-    """What a grading asks of the student's code: the Draw handed to the step's process
-    (its closed forms are what is expected)."""
-
-    draw: scenes.Draw
+Trial = DataTrial
 
 
 def drawn_trial(random, folder=None):

@@ -17,12 +17,11 @@ Carlo integrator (Practice 2's) with cosine sampling. The framework's GaussianPr
 and PyRT's machinery of z (pyrt/gp_*.py) are not in the working copy.
 """
 import sys
-from dataclasses import dataclass
 
 import numpy as np
 
 import course_kit.handout
-from course_kit.judging import judge_data_step
+from course_kit.judging import DataTrial, judge_data_step
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice3_checks as checks  # noqa: E402  (found through the line above)
@@ -33,12 +32,7 @@ RENDER = "practice3_render"  # the step process's render module
 DRAWN_SIZES = tuple(range(scenes.SIZE - 2, scenes.SIZE + 3))
 
 
-@dataclass(frozen=True)
-class Trial:
-    """What a grading asks of the student's code: the Draw handed to the step's process
-    (what is expected follows from it)."""
-
-    draw: scenes.Draw
+Trial = DataTrial
 
 
 def drawn_trial(random, folder=None):
