@@ -113,7 +113,9 @@ def right_files():
         "experiment_name=''):", "experiment_name='', pdf=UniformPDF()):") +
         "        self.pdf = pdf\n")
     integrators = integrators.replace(CMC_STUB, CMC + "\n" + LIGHT.rstrip("\n") + "\n")
-    integrators = integrators.replace(BMC_STUB, BMC + "\n" + LIGHT.rstrip("\n") + "\n")
+    # the BMC integrator's own light, its hit named otherwise
+    integrators = integrators.replace(BMC_STUB, BMC + "\n" + LIGHT.replace(
+        "h = ", "found = ").replace("h.", "found.").rstrip("\n") + "\n")
     texts["PyRT_Integrators.py"] = integrators + BMCIS + CMCIS
     texts["GaussianProcess.py"] = GP_FILE.read_text(encoding="utf-8")
     return texts
@@ -175,6 +177,10 @@ FIXTURES = (
                       "            brdf.get_value(wi, Vector3D(0, 0, 0), hit.normal)) * "
                       "Dot(hit.normal, wi)\n"),)),
             {"3.3": "counted twice"}),
+    Fixture("bmc_emission_forgotten", ("L_i of a sample ray's hit forgotten in BMC",),
+            Variant(((INTEGRATORS, "return self.scene.object_list[found.primitive_index]"
+                                   ".emission", "return BLACK"),)),
+            {"3.3": "no light from the walls"}),
     Fixture("one_rotation_no_pool", ("one rotation for every pixel without a pool",),
             Variant(((INTEGRATORS, "gp = self.myGP[int(random() * len(self.myGP))]",
                       "gp = self.myGP[0]"),

@@ -217,7 +217,10 @@ def test_each_submission_gets_the_verdict_it_deserves(graded, practice, fixture)
 
 @pytest.mark.parametrize("practice", [3, 4])
 def test_the_untouched_handout_gets_nothing(graded, practice):
-    assert graded[practice]["untouched"]["total"] == 0
+    record = graded[practice]["untouched"]
+    assert record["total"] == 0
+    assert all("stub" in step["reason"] or "not drawn from the cosine" in step["reason"]
+               for step in record["steps"]), [step["reason"] for step in record["steps"]]
 
 
 def test_practice4s_handout_gets_nothing_for_practice_4_and_all_of_practice_3(graded):

@@ -50,11 +50,12 @@ TITLES = {
     "bmc_sum": "compute_integral_BMC on given weights and values",
     "workbench": "the workbench's compute_estimate_bmc with a GP of known weights",
     "bmc_furnace": "BayesianMonteCarloIntegrator in a white furnace",
+    "bmc_box": "BayesianMonteCarloIntegrator inside a box of emitting walls",
     "bmc_pool": "BayesianMonteCarloIntegrator with a pool of GPs above a floor",
     "cmcis_furnace": "classic Monte Carlo with cosine sampling in a white furnace",
     "bmcis_furnace": "BMCISIntegrator in a white furnace",
 }
-STEPS = {"3.1": ("inv_q", "z", "bmc_sum"), "3.2": ("workbench",), "3.3": ("bmc_furnace",),
+STEPS = {"3.1": ("inv_q", "z", "bmc_sum"), "3.2": ("workbench",), "3.3": ("bmc_furnace", "bmc_box"),
          "3.3.2": ("bmc_pool",), "4.1": ("cmcis_furnace",), "4.2": ("bmcis_furnace",)}
 STEP_OF = {name: step for step, names in STEPS.items() for name in names}
 Check = practice1_checks.Check
@@ -120,6 +121,8 @@ def _judge_inv_q(check, rendered, draw, folder):
     if np.all(np.abs(got - expected) <= INVERSE_RELATIVE * scale):
         return check.succeed()
     mistake = _named(got, {
+        "Q holds the noise alone: the loop Q[i, j] = cov_func.eval(pos_i, pos_j) is still "
+        "the handout's stub": np.linalg.inv(draw.noise ** 2 * identity),
         "Q has no noise on its diagonal: Q[i, i] = k(omega_i, omega_i) + noise^2":
             np.linalg.inv(k),
         "the diagonal gets the noise, where noise^2 is asked":
@@ -277,6 +280,29 @@ def _judge_bmc_furnace(check, rendered, draw, folder):
         "the integral is BLACK: compute_color returns the handout's stub": 0.0})
 
 
+def _judge_bmc_box(check, rendered, draw, folder):
+    image = rendered.arrays["image"]
+    expected = scenes.box_expected(draw, scenes.cos_sum(draw.pool[0]) / math.pi)
+    wrong = (expected.exact[..., None] & ~close(image, expected.value, EXACT_RELATIVE * 1e3,
+                                                1e-12)).any(axis=2)
+    check.images = practice1_checks.write_pngs(folder, image, expected.value, wrong)
+    if not wrong.any():
+        return check.succeed()
+    sphere = scenes.furnace_sphere(draw)
+    y, x = (int(v) for v in np.argwhere(wrong)[0])
+    where = (f"{int(wrong.sum())} pixels differ (the first at x = {x}, y = {y}: yours "
+             f"{_rgb(image[y, x])}, expected {_rgb(expected.value[y, x])})")
+    if (wrong & sphere).any() and np.allclose(image[sphere], 0.0):
+        return check.fail("no light from the walls: the emission of the object a sample "
+                          "ray hits is its L_i (scene.object_list[hit.primitive_index]"
+                          ".emission): " + where)
+    walls = expected.exact & ~sphere
+    if (wrong & walls).any() and np.allclose(image[walls], scenes.box_emission(draw)):
+        return check.fail("the emission of the object a camera ray hits is added: the "
+                          "course's algorithm adds only what the sample rays gather: " + where)
+    return check.fail(where)
+
+
 def _judge_bmcis_furnace(check, rendered, draw, folder):
     gp = draw.pool_is[0]
     y = np.asarray(gp.positions)[:, 1]
@@ -329,5 +355,6 @@ def _judge_pool(check, rendered, draw, folder):
 
 JUDGES = {"inv_q": _judge_inv_q, "z": _judge_z, "bmc_sum": _judge_sum,
           "workbench": _judge_workbench, "bmc_furnace": _judge_bmc_furnace,
+          "bmc_box": _judge_bmc_box,
           "bmc_pool": _judge_pool, "cmcis_furnace": _judge_cmcis_furnace,
           "bmcis_furnace": _judge_bmcis_furnace}

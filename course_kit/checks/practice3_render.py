@@ -7,7 +7,8 @@ practice3_checks.py judges this data. Here your own modules run:
 - "bmc_sum": your compute_integral_BMC() on given weights and colours;
 - "workbench": your workbench's compute_estimate_bmc(gp, sample_pos_, sample_values_) with
   a GP of the kit;
-- "bmc_furnace", "bmc_pool", "bmcis_furnace": your BayesianMonteCarloIntegrator (3.3, 3.3.2)
+- "bmc_furnace", "bmc_box", "bmc_pool", "bmcis_furnace": your
+  BayesianMonteCarloIntegrator (3.3 in the furnace and in a box of emitting walls, 3.3.2)
   and BMCISIntegrator (4.2) with GPs of the kit, whose weights practice3_scenes.py
   computed: a mistake of your GaussianProcess.py costs Assignment 3.1 alone;
 - "cmcis_furnace": classic Monte Carlo with cosine sampling (4.1): your CMCISIntegrator,
@@ -29,8 +30,8 @@ import practice3_scenes as scenes
 Rendered = practice1_render.Rendered
 ERROR_TEXT = practice1_render.ERROR_TEXT
 GP_MODULE = "GaussianProcess"
-NAMES = ("inv_q", "z", "bmc_sum", "workbench", "bmc_furnace", "bmc_pool", "cmcis_furnace",
-         "bmcis_furnace")
+NAMES = ("inv_q", "z", "bmc_sum", "workbench", "bmc_furnace", "bmc_box", "bmc_pool",
+         "cmcis_furnace", "bmcis_furnace")
 
 
 def gaussian_process():
@@ -207,6 +208,28 @@ def _floor(draw, out):
     return scene
 
 
+def _box(draw, out):
+    """The furnace's sphere inside 3.3's closed box of emitting walls, no map."""
+    common, core, _ = practice1_render.course_modules()
+    Vector3D = common.Vector3D
+    scene = core.Scene()
+    f = draw.furnace
+    sphere = core.Sphere(Vector3D(*f.centre), f.radius)
+    sphere.set_BRDF(core.Lambertian(common.RGBColor(*f.albedo)))
+    scene.add_object(sphere)
+    low, high = Vector3D(*scenes.BOX_LOW), Vector3D(*scenes.BOX_HIGH)
+    size = [h - l for l, h in zip(scenes.BOX_LOW, scenes.BOX_HIGH)]
+    x, y, z = (Vector3D(size[0], 0.0, 0.0), Vector3D(0.0, size[1], 0.0),
+               Vector3D(0.0, 0.0, size[2]))
+    for corner, s1, s2 in ((low, x, y), (low, y, z), (low, z, x), (high, x * -1.0, y * -1.0),
+                           (high, y * -1.0, z * -1.0), (high, z * -1.0, x * -1.0)):
+        wall = core.Parallelogram(corner, s1, s2, common.RGBColor(*scenes.box_emission(draw)))
+        wall.set_BRDF(core.Lambertian(common.RGBColor(0.0, 0.0, 0.0)))
+        scene.add_object(wall)
+    scene.set_camera(core.Camera(draw.size, draw.size, practice2_render.scenes.FOV))
+    return scene
+
+
 def _image(rendered, integrator, scene, each_pixel=None):
     """compute_color on the camera ray through each pixel's centre (rows y), into
     rendered.arrays["image"]; each_pixel(x, y) after each pixel."""
@@ -228,7 +251,7 @@ def _image(rendered, integrator, scene, each_pixel=None):
     return True
 
 
-def _bmc_image(rendered, draw, out, cls_name, gp_set, p_func_of):
+def _bmc_image(rendered, draw, out, cls_name, gp_set, p_func_of, scene_of=_furnace):
     common, _, integrators = practice1_render.course_modules()
     cls = getattr(integrators, cls_name, None)
     if cls is None:
@@ -239,7 +262,7 @@ def _bmc_image(rendered, draw, out, cls_name, gp_set, p_func_of):
         gp = KitGP(common, gp_set, p_func)
         integrator = cls(len(gp_set.positions), style(gp), str(out / cls_name))
         try:
-            return _image(rendered, integrator, _furnace(draw, out))
+            return _image(rendered, integrator, scene_of(draw, out))
         except (TypeError, AttributeError, IndexError, KeyError):
             if style(gp) is not gp:
                 raise
@@ -248,6 +271,11 @@ def _bmc_image(rendered, draw, out, cls_name, gp_set, p_func_of):
 def _bmc_furnace(rendered, draw, out):
     _bmc_image(rendered, draw, out, "BayesianMonteCarloIntegrator", draw.pool[0],
                lambda common: common.Constant(1))
+
+
+def _bmc_box(rendered, draw, out):
+    _bmc_image(rendered, draw, out, "BayesianMonteCarloIntegrator", draw.pool[0],
+               lambda common: common.Constant(1), _box)
 
 
 def _bmcis_furnace(rendered, draw, out):
@@ -309,7 +337,7 @@ def _bmc_pool(rendered, draw, out):
 
 
 COLLECTORS = {"inv_q": _inv_q, "z": _z, "bmc_sum": _bmc_sum, "workbench": _workbench,
-              "bmc_furnace": _bmc_furnace, "bmc_pool": _bmc_pool,
+              "bmc_furnace": _bmc_furnace, "bmc_box": _bmc_box, "bmc_pool": _bmc_pool,
               "cmcis_furnace": _cmcis_furnace, "bmcis_furnace": _bmcis_furnace}
 
 # What the step server asks of every practice's render module

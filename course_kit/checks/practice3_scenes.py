@@ -13,8 +13,8 @@ The Gaussian process (3.1), with the course's Sobolev kernel k(omega_i, omega_j)
   sample_set_hemisphere draws, u1 then u2 for each);
 - the BMC sum, sum over i of w_i Y_i on given weights and colours.
 The integrators (3.3, 3.3.2, 4.1, 4.2) run in the white furnace of practice2_scenes (a
-Lambertian sphere of albedo rho under an environment map of one value c) and, for 3.3.2,
-above a floor under the same sky. A GP's weights are what this module computes for its
+Lambertian sphere of albedo rho under an environment map of one value c), for 3.3 also
+inside a closed box of emitting walls, and, for 3.3.2, above a floor under the same sky. A GP's weights are what this module computes for its
 sample set (weights), handed to the integrator inside a GP of the kit: the integrator's
 checks never depend on the student's GaussianProcess.py. With the values Y_j = c (rho /
 pi) cos(theta_j) of the uniform BMC integrator, the furnace's pixel is c (rho / pi) sum
@@ -280,6 +280,30 @@ def furnace_sphere(draw):
     t, edge = practice2_scenes._sphere_hits(practice2_scenes.camera_directions(draw.size),
                                             f.centre, f.radius)
     return np.isfinite(t) & ~edge
+
+
+# The emitting box of 3.3 around the camera and the furnace's sphere: its corners, and its
+# walls' emission per unit of the furnace's sky value
+BOX_LOW, BOX_HIGH = (-2.5, -2.5, -5.0), (2.5, 2.5, 1.0)
+BOX_EMISSION = (1.0, 2.0, 3.0)
+
+
+def box_emission(draw):
+    """E, the emission of every wall of 3.3's box."""
+    return tuple(e * draw.furnace.sky for e in BOX_EMISSION)
+
+
+def box_expected(draw, factor):
+    """The practice2_scenes.Expected of the furnace's sphere inside a closed box whose
+    walls emit E and reflect nothing (no map): every sample ray from the sphere meets a
+    wall, so the sphere's pixels are E rho times factor; the walls' own pixels are 0 (a
+    camera ray's own hit adds no emission), exactly."""
+    f = draw.furnace
+    t, edge = practice2_scenes._sphere_hits(practice2_scenes.camera_directions(draw.size),
+                                            f.centre, f.radius)
+    value = np.where(np.isfinite(t)[..., None],
+                     np.asarray(f.albedo) * np.asarray(box_emission(draw)) * factor, 0.0)
+    return practice2_scenes.Expected(value, ~edge, np.zeros_like(edge), (0.0, 0.0, 0.0))
 
 
 def floor_pixels(draw):

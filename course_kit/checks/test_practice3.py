@@ -41,5 +41,9 @@ def test_assignment_3_3_white_furnace():
     passes("bmc_furnace")
 
 
+def test_assignment_3_3_emitting_walls():
+    passes("bmc_box")
+
+
 def test_assignment_3_3_2_rotation_and_pool():
     passes("bmc_pool")
