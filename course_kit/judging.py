@@ -189,6 +189,15 @@ class DataTrial:
     draw: object
 
 
+def data_trial_drawer(draw_inputs, sizes):
+    """The drawn_trial(random, folder=None) of a practice whose checks judge data alone: a
+    DataTrial of draw_inputs(random, size), drawn with random (a random.Random) at grading
+    time at a size of sizes; folder: unused (the closed forms need no renders)."""
+    def drawn_trial(random, folder=None):
+        return DataTrial(draw_inputs(random, random.choice(sizes)))
+    return drawn_trial
+
+
 def judge_data_step(checks, render_name, rendered_from, expected_arrays, step, trial,
                     server, workdir, scratch, limits):
     """judge_step of a practice whose checks judge data alone (Practices 2 to 4): the

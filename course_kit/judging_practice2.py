@@ -17,7 +17,7 @@ import numpy as np
 
 import course_kit.handout
 from course_kit.practices import PRACTICES
-from course_kit.judging import DataTrial, judge_data_step
+from course_kit.judging import DataTrial, data_trial_drawer, judge_data_step
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice2_checks as checks  # noqa: E402  (found through the line above)
@@ -29,12 +29,7 @@ DRAWN_SIZES = tuple(range(scenes.SIZE - 4, scenes.SIZE + 5))
 
 
 Trial = DataTrial
-
-
-def drawn_trial(random, folder=None):
-    """A Trial drawn with random (a random.Random) at grading time, at a size of
-    DRAWN_SIZES; folder: unused (the closed forms need no renders)."""
-    return Trial(scenes.draw_inputs(random, random.choice(DRAWN_SIZES)))
+drawn_trial = data_trial_drawer(scenes.draw_inputs, DRAWN_SIZES)
 
 
 def draw_record(draw):

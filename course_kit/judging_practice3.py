@@ -21,24 +21,20 @@ import sys
 import numpy as np
 
 import course_kit.handout
-from course_kit.judging import DataTrial, judge_data_step
+from course_kit.practices import PRACTICES
+from course_kit.judging import DataTrial, data_trial_drawer, judge_data_step
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice3_checks as checks  # noqa: E402  (found through the line above)
 import practice3_render as render  # noqa: E402
 import practice3_scenes as scenes  # noqa: E402
 
-RENDER = "practice3_render"  # the step process's render module
+RENDER = PRACTICES[3].render  # the step process's render module
 DRAWN_SIZES = tuple(range(scenes.SIZE - 2, scenes.SIZE + 3))
 
 
 Trial = DataTrial
-
-
-def drawn_trial(random, folder=None):
-    """A Trial drawn with random (a random.Random) at grading time, at a size of
-    DRAWN_SIZES; folder: unused (the closed forms need no renders)."""
-    return Trial(scenes.draw_inputs(random, random.choice(DRAWN_SIZES)))
+drawn_trial = data_trial_drawer(scenes.draw_inputs, DRAWN_SIZES)
 
 
 def draw_record(draw):
