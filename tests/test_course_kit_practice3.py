@@ -164,6 +164,21 @@ def test_the_pool_check_wants_every_gp_and_a_rotation_per_hit():
     assert not no_pool.passed and "never used" in no_pool.reason
 
 
+def test_the_workbenchs_bmc_is_must_model_cos3_alone():
+    draw = scenes.PUBLISHED
+    y = np.asarray(draw.pool[0].positions)[:, 1]
+    rendered = render.Rendered("workbench4")
+    rendered.arrays.update(pdf=np.stack([y / math.pi] * 2), p=np.stack([y * np.nan, y]),
+                           f=np.stack([y * np.nan, y ** 3]))
+    assert checks.judge_rendered(rendered, draw, None).passed
+    rendered.arrays["f"] = np.stack([y * np.nan, y ** 4])  # the BRDF's cosine kept
+    check = checks.judge_rendered(rendered, draw, None)
+    assert not check.passed and "keep the cosine" in check.reason
+    rendered.arrays["pdf"] = np.stack([np.full_like(y, 1 / (2 * math.pi)), y / math.pi])
+    check = checks.judge_rendered(rendered, draw, None)
+    assert not check.passed and "MC IS does not sample from the cosine" in check.reason
+
+
 def test_a_step_may_not_open_the_frameworks_gaussian_process(tmp_path):
     hook = course_kit.isolation.guard(tmp_path, refused := [])
     framework = course_kit.handout.REPO / "GaussianProcess.py"

@@ -54,10 +54,16 @@ TITLES = {
     "bmc_pool": "BayesianMonteCarloIntegrator with a pool of GPs above a floor",
     "cmcis_furnace": "classic Monte Carlo with cosine sampling in a white furnace",
     "bmcis_furnace": "BMCISIntegrator in a white furnace",
+    "workbench4": "the workbench's MC IS and BMC IS methods (practice4_methods)",
 }
-STEPS = {"3.1": ("inv_q", "z", "bmc_sum"), "3.2": ("workbench",), "3.3": ("bmc_furnace", "bmc_box"),
-         "3.3.2": ("bmc_pool",), "4.1": ("cmcis_furnace",), "4.2": ("bmcis_furnace",)}
-STEP_OF = {name: step for step, names in STEPS.items() for name in names}
+STEPS = {"3.1": ("inv_q", "z", "bmc_sum"), "3.2": ("workbench",),
+         "3.3": ("bmc_furnace", "bmc_box"), "3.3.2": ("bmc_pool",),
+         "4.1": ("cmcis_furnace",), "4.2": ("bmcis_furnace",)}
+# The workbench's methods of 4.1 and 4.2: checked in the handout, never graded (a
+# course-style workbench is a script with no function to call)
+OPTIONAL_STEPS = {"4.1-4.2": ("workbench4",)}
+STEP_OF = {name: step for step, names in {**STEPS, **OPTIONAL_STEPS}.items()
+           for name in names}
 Check = practice1_checks.Check
 close = practice2_checks.close
 
@@ -353,8 +359,31 @@ def _judge_pool(check, rendered, draw, folder):
     return check.succeed()
 
 
+def _judge_workbench4(check, rendered, draw, folder):
+    y = np.asarray(draw.pool[0].positions)[:, 1]
+    cosine = y / math.pi
+    pdf, p, f = (rendered.arrays[key] for key in ("pdf", "p", "f"))
+    reasons = []
+    for row, label in enumerate(render.WORKBENCH_LABELS):
+        if np.all(np.isnan(pdf[row])):
+            reasons.append(f"no method labelled {label!r}")
+        elif not np.all(close(pdf[row], cosine)):
+            reasons.append(f"{label} does not sample from the cosine, CosinePDF(1) "
+                           "(density cos / pi)")
+    if not reasons:
+        if not np.all(close(p[1], y)):
+            reasons.append("BMC IS's p is not the cosine (p_func = CosineLobe(1), which "
+                           "goes into z)")
+        if np.all(close(f[1], y ** 4)):
+            reasons.append("BMC IS's values keep the cosine: with p = cos the GP models "
+                           "f = cos^3 alone")
+        elif not np.all(close(f[1], y ** 3)):
+            reasons.append("BMC IS's values are not f = cos^3")
+    return check.fail("; ".join(reasons)) if reasons else check.succeed()
+
+
 JUDGES = {"inv_q": _judge_inv_q, "z": _judge_z, "bmc_sum": _judge_sum,
           "workbench": _judge_workbench, "bmc_furnace": _judge_bmc_furnace,
           "bmc_box": _judge_bmc_box,
           "bmc_pool": _judge_pool, "cmcis_furnace": _judge_cmcis_furnace,
-          "bmcis_furnace": _judge_bmcis_furnace}
+          "bmcis_furnace": _judge_bmcis_furnace, "workbench4": _judge_workbench4}

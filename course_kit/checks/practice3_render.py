@@ -11,6 +11,8 @@ practice3_checks.py judges this data. Here your own modules run:
   BayesianMonteCarloIntegrator (3.3 in the furnace and in a box of emitting walls, 3.3.2)
   and BMCISIntegrator (4.2) with GPs of the kit, whose weights practice3_scenes.py
   computed: a mistake of your GaussianProcess.py costs Assignment 3.1 alone;
+- "workbench4": the pdf, p and f of the MC IS and BMC IS methods of your workbench's
+  practice4_methods() at given directions;
 - "cmcis_furnace": classic Monte Carlo with cosine sampling (4.1): your CMCISIntegrator,
   or CMCIntegrator(..., pdf=CosinePDF(1)) when you have none and your CMCIntegrator takes
   pdf.
@@ -31,7 +33,7 @@ Rendered = practice1_render.Rendered
 ERROR_TEXT = practice1_render.ERROR_TEXT
 GP_MODULE = "GaussianProcess"
 NAMES = ("inv_q", "z", "bmc_sum", "workbench", "bmc_furnace", "bmc_box", "bmc_pool",
-         "cmcis_furnace", "bmcis_furnace")
+         "cmcis_furnace", "bmcis_furnace", "workbench4")
 
 
 def gaussian_process():
@@ -179,6 +181,37 @@ def _workbench(rendered, draw, out):
         results.append(_channels(value)[0] if hasattr(value, "r") else _number(rendered,
                                                                                 value))
     rendered.arrays["estimates"] = np.array(results, dtype=np.float64)
+
+
+WORKBENCH_LABELS = ("MC IS", "BMC IS")  # Practice 4's methods that its students add
+
+
+def _workbench4(rendered, draw, out):
+    """For MC IS and BMC IS of the workbench's practice4_methods() (the handout's function
+    of 4.1 and 4.2), at the directions of the draw's first GP: the pdf's value, p (nan
+    for a classic method) and f, the product of the GP's value functions (the whole
+    integrand, PRACTICE4_INTEGRAND's, when it names none); rows nan for a method that is
+    not there."""
+    common = practice1_render.course_modules()[0]
+    bench = practice2_render.workbench()
+    methods_of = getattr(bench, "practice4_methods", None)
+    if methods_of is None:
+        raise AttributeError("AppWorkbench.py defines no practice4_methods(), the handout's "
+                             "function of Practice 4's methods")
+    directions = [common.Vector3D(*p) for p in draw.pool[0].positions]
+    table = np.full((3, len(WORKBENCH_LABELS), len(directions)), np.nan)
+    for method in methods_of():
+        if method.label not in WORKBENCH_LABELS:
+            continue
+        row = WORKBENCH_LABELS.index(method.label)
+        table[0, row] = [method.pdf.get_val(d) for d in directions]
+        if method.p_func is None:
+            continue
+        table[1, row] = [method.p_func.eval(d) if hasattr(method.p_func, "eval")
+                         else float(method.p_func) for d in directions]
+        functions = method.value_functions or bench.PRACTICE4_INTEGRAND.functions
+        table[2, row] = [math.prod(f.eval(d) for f in functions) for d in directions]
+    rendered.arrays.update(pdf=table[0], p=table[1], f=table[2])
 
 
 def _number(rendered, value):
@@ -338,7 +371,8 @@ def _bmc_pool(rendered, draw, out):
 
 COLLECTORS = {"inv_q": _inv_q, "z": _z, "bmc_sum": _bmc_sum, "workbench": _workbench,
               "bmc_furnace": _bmc_furnace, "bmc_box": _bmc_box, "bmc_pool": _bmc_pool,
-              "cmcis_furnace": _cmcis_furnace, "bmcis_furnace": _bmcis_furnace}
+              "cmcis_furnace": _cmcis_furnace, "bmcis_furnace": _bmcis_furnace,
+              "workbench4": _workbench4}
 
 # What the step server asks of every practice's render module
 draw_from_json = scenes.draw_from_json

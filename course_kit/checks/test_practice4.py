@@ -27,3 +27,8 @@ def test_assignment_4_1_importance_sampling_furnace():
 
 def test_assignment_4_2_bmc_importance_sampling_furnace():
     passes("bmcis_furnace")
+
+
+def test_optional_4_1_and_4_2_workbench_methods():
+    """The workbench's MC IS and BMC IS (practice4_methods): checked, not graded."""
+    passes("workbench4")
