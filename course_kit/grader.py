@@ -86,6 +86,8 @@ SUBMITTED_MODULES = tuple(dict.fromkeys(name for one in PRACTICES.values()
 MAX_MODULE_BYTES = 1024 * 1024  # a course module larger than this is not taken
 OUTPUT_SHOWN = 4000  # characters of a step's output kept for the feedback
 REASON_LENGTH = 240  # characters of a failed step's reason in grades.csv
+# How the step's guard words a refusal to read the framework's answers
+STOLEN = course_kit.isolation.READ_ANSWERS
 
 
 # ------------------------------------------------------------------------------------------
@@ -298,7 +300,25 @@ def grade_steps(submission, template, scratch, config, server, trial):
             "output": output[-OUTPUT_SHOWN:], "checks": checks, "passed": passed,
             "reason": reason, "points": config.points[step] if passed else 0,
             # the system's doing, not the student's: grade_submission takes it out
-            "limits_not_set": limits_not_set})
+            "limits_not_set": limits_not_set, "refused": list(refused)})
+    return _without_stolen_answers(verdicts)
+
+
+def _without_stolen_answers(verdicts):
+    """verdicts with every step at no points when the guard caught one step reading the
+    framework's answers (course_kit/isolation.py's FRAMEWORK_ANSWERS): what the code of
+    such a submission makes is not its own in any step, so it scores what the untouched
+    handout scores, which solves nothing (a step that reads nothing may still run what
+    was read, held in memory or copied into another module)."""
+    caught = [(verdict["step"], refusal) for verdict in verdicts
+              for refusal in verdict.pop("refused") if refusal.startswith(STOLEN)]
+    if not caught:
+        return verdicts
+    step, refusal = caught[0]
+    reason = (f"refused: {refusal}, in step {step}: no step of a submission that reads "
+              "the framework's answers earns points")
+    for verdict in verdicts:
+        verdict.update(passed=False, points=0, reason=reason)
     return verdicts
 
 

@@ -85,6 +85,7 @@ PROCESS_EVENTS = {"subprocess.Popen", "os.system", "os.exec", "os.posix_spawn", 
 FRAMEWORK_ANSWERS = ((KIT.parent, "GaussianProcess."), (KIT.parent / "__pycache__",
                      "GaussianProcess."), (KIT.parent / "pyrt", "gp_"),
                      (KIT.parent / "pyrt" / "__pycache__", "gp_"))
+READ_ANSWERS = "read the framework's answers"  # how a refusal to read them begins
 WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_APPEND | os.O_CREAT | os.O_TRUNC
 PR_SET_CHILD_SUBREAPER, PR_SET_NO_NEW_PRIVS = 36, 38  # Linux's prctl options
 
@@ -150,7 +151,7 @@ def guard(workdir, refused):
 
     def hook(event, args):
         if event == "open" and framework_answer(args[0]):
-            note(f"read the framework's answers: {os.fsdecode(args[0])} (open)")
+            note(f"{READ_ANSWERS}: {os.fsdecode(args[0])} (open)")
             raise PermissionError("grading: refused, the framework's answers are not "
                                   "readable while grading")
         if event == "open":
