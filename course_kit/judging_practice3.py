@@ -56,8 +56,12 @@ def expected_arrays(name, draw):
         return {"z_one": (float64, (n,)), "z_cos": (float64, (n,))}
     if name == "bmc_sum":
         return {"sums": (float64, (len(draw.sums), 3))}
+    script = {"script": (float64, (len(render.SCRIPT_CALLS),))}
     if name == "workbench":
-        return {"estimates": (float64, (len(draw.pool),))}
+        return {"estimates": (float64, (len(draw.pool),)), **script}
+    if name in render.WORKBENCH_CHECKS:
+        n_directions = (len(draw.pool[0].positions),)
+        return {key: (float64, n_directions) for key in ("pdf", "p", "f")} | script
     image = {"image": (float64, (draw.size, draw.size, 3))}
     if name == "bmc_pool":
         image.update(directions=(float64, (draw.size, draw.size, draw.n_samples, 3)),

@@ -86,12 +86,13 @@ PRACTICES = {
         steps={
             "3.1": "Assignment 3.1: the Gaussian process (compute_inv_Q, compute_z, "
                    "compute_integral_BMC)",
+            "3.2": "Assignment 3.2: the workbench's BMC estimate",
             "3.3": "Assignment 3.3: the Bayesian Monte Carlo integrator",
             "3.3.2": "Assignment 3.3.2: a random rotation and a pool of GPs per hit",
         },
-        # 3.2, the workbench's BMC, is optional: checked when it is the handout's
-        # compute_estimate_bmc, not graded (a course-style workbench is a script with no
-        # function to call). Practices 1 and 2's checks lend their verdicts, images and scenes
+        # 3.2: the handout's compute_estimate_bmc called, or a course-style workbench (a
+        # script with no function to call) read for its calls. Practices 1 and 2's checks
+        # lend their verdicts, images and scenes
         check_files=BAYESIAN_CHECK_FILES + ("test_practice3.py",),
         expected=(),
         packages=("numpy", "opencv-python-headless", "matplotlib", "tqdm", "pytest"),
@@ -101,8 +102,10 @@ PRACTICES = {
         number=4,
         modules=FRAMEWORK_MODULES + (WORKBENCH, GAUSSIAN_PROCESS),
         steps={
-            "4.1": "Assignment 4.1: classic Monte Carlo with importance sampling",
-            "4.2": "Assignment 4.2: Bayesian Monte Carlo with importance sampling",
+            "4.1": "Assignment 4.1: classic Monte Carlo with importance sampling (the "
+                   "workbench's MC IS and the integrator)",
+            "4.2": "Assignment 4.2: Bayesian Monte Carlo with importance sampling (the "
+                   "workbench's BMC IS and the integrator)",
         },
         check_files=BAYESIAN_CHECK_FILES + ("test_practice4.py",),
         expected=(),

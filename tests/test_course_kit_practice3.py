@@ -13,6 +13,7 @@ import course_bayesian_submissions as submissions
 import course_kit.grader
 import course_kit.handout
 import course_kit.isolation
+import course_kit.sandbox
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice3_checks as checks  # noqa: E402  (found through the line above)
@@ -164,19 +165,41 @@ def test_the_pool_check_wants_every_gp_and_a_rotation_per_hit():
     assert not no_pool.passed and "never used" in no_pool.reason
 
 
+def _method_rendered(name, pdf, p, f, defines=True):
+    rendered = render.Rendered(name)
+    script = np.zeros(len(render.SCRIPT_CALLS))
+    script[-1] = defines
+    rendered.arrays.update(pdf=pdf, p=p, f=f, script=script)
+    return rendered
+
+
 def test_the_workbenchs_bmc_is_must_model_cos3_alone():
     draw = scenes.PUBLISHED
     y = np.asarray(draw.pool[0].positions)[:, 1]
-    rendered = render.Rendered("workbench4")
-    rendered.arrays.update(pdf=np.stack([y / math.pi] * 2), p=np.stack([y * np.nan, y]),
-                           f=np.stack([y * np.nan, y ** 3]))
-    assert checks.judge_rendered(rendered, draw, None).passed
-    rendered.arrays["f"] = np.stack([y * np.nan, y ** 4])  # the BRDF's cosine kept
-    check = checks.judge_rendered(rendered, draw, None)
+    assert checks.judge_rendered(_method_rendered("workbench_bmc_is", y / math.pi, y, y ** 3),
+                                 draw, None).passed
+    check = checks.judge_rendered(_method_rendered("workbench_bmc_is", y / math.pi, y,
+                                                   y ** 4), draw, None)  # the cosine kept
     assert not check.passed and "keep the cosine" in check.reason
-    rendered.arrays["pdf"] = np.stack([np.full_like(y, 1 / (2 * math.pi)), y / math.pi])
-    check = checks.judge_rendered(rendered, draw, None)
+    check = checks.judge_rendered(_method_rendered(
+        "workbench_mc_is", np.full_like(y, 1 / (2 * math.pi)), y * np.nan, y * np.nan), draw,
+        None)
     assert not check.passed and "MC IS does not sample from the cosine" in check.reason
+
+
+def test_a_script_workbench_is_judged_on_the_courses_calls():
+    draw = scenes.PUBLISHED
+    nothing = np.full(len(draw.pool[0].positions), np.nan)
+    rendered = _method_rendered("workbench_bmc_is", nothing, nothing, nothing, defines=False)
+    calls = dict.fromkeys(render.SCRIPT_CALLS, 1.0)
+    calls["the handout's function"] = 0.0
+    rendered.arrays["script"] = np.array(list(calls.values()))
+    check = checks.judge_rendered(rendered, draw, None)
+    assert check.passed and "a script with no practice4_methods()" in check.note
+    calls["GP with p = CosineLobe"] = 0.0  # BMC IS's GP of p = 1
+    rendered.arrays["script"] = np.array(list(calls.values()))
+    check = checks.judge_rendered(rendered, draw, None)
+    assert not check.passed and "never calls GP with p = CosineLobe" in check.reason
 
 
 def test_a_step_may_not_open_the_frameworks_gaussian_process(tmp_path):
@@ -193,6 +216,18 @@ def test_a_step_may_not_open_the_frameworks_gaussian_process(tmp_path):
 # ------------------------------------------------------------------------------------------
 # The grader
 # ------------------------------------------------------------------------------------------
+def write_untouched_and_hostile(root, folder):
+    """The untouched handouts of Practices 3 and 4 and the hostile submissions (on the
+    first), in folder; their handouts in root."""
+    for practice, name in ((3, "untouched"), (4, "untouched4")):
+        handout = course_kit.handout.write_handout(root / f"handout{practice}", practice)
+        (folder / name).mkdir(parents=True)
+        for module in course_kit.handout.PRACTICES[practice].modules:
+            shutil.copyfile(handout / module, folder / name / module)
+    for hostile in submissions.HOSTILE:
+        submissions.write_hostile(folder / hostile.name, hostile, root / "handout3")
+
+
 @pytest.fixture(scope="module")
 def graded(tmp_path_factory):
     """{practice: {submission: record}} of FIXTURES and the untouched handouts of Practices 3
@@ -204,11 +239,7 @@ def graded(tmp_path_factory):
     folder = root / "submissions"
     for fixture in submissions.FIXTURES:
         submissions.write(folder / fixture.name, fixture.variant)
-    for practice, name in ((3, "untouched"), (4, "untouched4")):
-        handout = course_kit.handout.write_handout(root / f"handout{practice}", practice)
-        (folder / name).mkdir()
-        for module in course_kit.handout.PRACTICES[practice].modules:
-            shutil.copyfile(handout / module, folder / name / module)
+    write_untouched_and_hostile(root, folder)
     return {practice: {record["submission"]: record for record in
                        course_kit.grader.grade_folder(
                            folder, root / f"results{practice}",
@@ -244,7 +275,49 @@ def test_practice4s_handout_gets_nothing_for_practice_4_and_all_of_practice_3(gr
     assert record["total"] == record["max_total"], [step["reason"] for step in record["steps"]]
 
 
-def test_the_hostile_reading_is_refused_and_named(graded):
-    step = graded[3]["hostile_reads_framework_gp"]["steps"][0]
-    assert not step["passed"]
-    assert "refused: read the framework's answers" in step["reason"]
+@pytest.mark.parametrize("practice", [3, 4])
+def test_reading_the_frameworks_answers_costs_every_step(graded, practice):
+    record = graded[practice]["hostile_reads_framework_gp"]
+    assert record["total"] == 0
+    for step in record["steps"]:
+        assert "refused: read the framework's answers" in step["reason"]
+        assert "no step of a submission that reads the framework's answers" in step["reason"]
+
+
+@pytest.mark.parametrize("practice", [3, 4])
+@pytest.mark.parametrize("hostile", submissions.HOSTILE, ids=lambda h: h.name)
+def test_a_hostile_submission_gets_what_the_untouched_handout_gets(graded, practice, hostile):
+    steps = graded[practice][hostile.name]["steps"]
+    untouched = graded[practice]["untouched"]["steps"]
+    assert [s["points"] for s in steps] == [s["points"] for s in untouched], [
+        s["reason"] for s in steps]
+    assert [s["points"] for s in untouched] == [0] * len(untouched)
+
+
+@pytest.fixture(scope="module")
+def graded_in_bubblewrap(tmp_path_factory):
+    """{practice: {submission: record}} of the untouched handouts, the hostile submissions
+    and the right one, graded in bubblewrap's sandbox."""
+    if course_kit.sandbox.why_no_bubblewrap():
+        pytest.skip("needs bubblewrap's sandbox: " + course_kit.sandbox.why_no_bubblewrap())
+    root = tmp_path_factory.mktemp("bayesian_bwrap")
+    folder = root / "submissions"
+    submissions.write(folder / "right", submissions.FIXTURES[0].variant)
+    write_untouched_and_hostile(root, folder)
+    return {practice: {record["submission"]: record for record in
+                       course_kit.grader.grade_folder(
+                           folder, root / f"results{practice}",
+                           course_kit.grader.load_config(practice=practice), jobs=2,
+                           progress=False, isolation="bubblewrap",
+                           draws=random.Random(50 + practice))}
+            for practice in (3, 4)}
+
+
+@pytest.mark.parametrize("practice", [3, 4])
+def test_in_bubblewrap_the_hostile_get_what_the_untouched_handout_gets(graded_in_bubblewrap,
+                                                                       practice):
+    records = graded_in_bubblewrap[practice]
+    assert records["right"]["total"] == records["right"]["max_total"] == 100
+    untouched = [s["points"] for s in records["untouched"]["steps"]]
+    for hostile in submissions.HOSTILE:
+        assert [s["points"] for s in records[hostile.name]["steps"]] == untouched, hostile

@@ -54,16 +54,19 @@ TITLES = {
     "bmc_pool": "BayesianMonteCarloIntegrator with a pool of GPs above a floor",
     "cmcis_furnace": "classic Monte Carlo with cosine sampling in a white furnace",
     "bmcis_furnace": "BMCISIntegrator in a white furnace",
-    "workbench4": "the workbench's MC IS and BMC IS methods (practice4_methods)",
+    "workbench_mc_is": "the workbench's MC IS method (practice4_methods)",
+    "workbench_bmc_is": "the workbench's BMC IS method (practice4_methods)",
 }
 STEPS = {"3.1": ("inv_q", "z", "bmc_sum"), "3.2": ("workbench",),
          "3.3": ("bmc_furnace", "bmc_box"), "3.3.2": ("bmc_pool",),
-         "4.1": ("cmcis_furnace",), "4.2": ("bmcis_furnace",)}
-# The workbench's methods of 4.1 and 4.2: checked in the handout, never graded (a
-# course-style workbench is a script with no function to call)
-OPTIONAL_STEPS = {"4.1-4.2": ("workbench4",)}
-STEP_OF = {name: step for step, names in {**STEPS, **OPTIONAL_STEPS}.items()
-           for name in names}
+         "4.1": ("workbench_mc_is", "cmcis_furnace"),
+         "4.2": ("workbench_bmc_is", "bmcis_furnace")}
+STEP_OF = {name: step for step, names in STEPS.items() for name in names}
+# A course-style workbench (a script, no function to call) is judged on its calls
+SCRIPT_NOTE = ("your AppWorkbench.py is a script with no {function}: nothing of it can be "
+               "called on given inputs, so it is judged on the course's calls its code "
+               "makes ({calls}); {rest}; the plot it draws is for your teaching assistant "
+               "to read")
 Check = practice1_checks.Check
 close = practice2_checks.close
 
@@ -218,7 +221,33 @@ def _judge_sum(check, rendered, draw, folder):
 # ------------------------------------------------------------------------------------------
 # Assignment 3.2
 # ------------------------------------------------------------------------------------------
+def _script_calls(rendered, names):
+    """The calls of SCRIPT_CALLS of names that the workbench's code never makes."""
+    flags = dict(zip(render.SCRIPT_CALLS, rendered.arrays["script"]))
+    return [name for name in names if not flags[name]]
+
+
+def _judge_script(check, rendered, function, calls, rest):
+    """A course-style workbench's check: passed when its code makes every call of calls."""
+    missing = _script_calls(rendered, calls)
+    if missing:
+        return check.fail(f"your AppWorkbench.py defines no {function} and its code never "
+                          f"calls {', '.join(missing)}: " + rest)
+    return check.succeed(SCRIPT_NOTE.format(function=function, calls=", ".join(calls),
+                                            rest=rest))
+
+
+def _is_script(rendered):
+    return not rendered.arrays["script"][-1]
+
+
 def _judge_workbench(check, rendered, draw, folder):
+    if _is_script(rendered):
+        return _judge_script(
+            check, rendered, "compute_estimate_bmc(gp, sample_pos_, sample_values_)",
+            ("GP with p = 1", "add_sample_pos", "add_sample_val", "compute_integral_BMC"),
+            "BMC's estimate is a GP given the samples' positions and values, then "
+            "compute_integral_BMC, whose arithmetic Assignment 3.1 judges")
     got = rendered.arrays["estimates"]
     expected = np.array([scenes.cos_sum(gp) for gp in draw.pool])
     if np.all(close(got, expected)):
@@ -359,31 +388,43 @@ def _judge_pool(check, rendered, draw, folder):
     return check.succeed()
 
 
-def _judge_workbench4(check, rendered, draw, folder):
+def _judge_workbench_method(check, rendered, draw, folder):
+    label = render.WORKBENCH_CHECKS[rendered.name]
+    if _is_script(rendered):
+        if label == "MC IS":
+            return _judge_script(check, rendered, "practice4_methods()",
+                                 ("CosinePDF", "compute_estimate_cmc"),
+                                 "MC IS is the classic estimate of samples drawn from "
+                                 "CosinePDF(1)")
+        return _judge_script(check, rendered, "practice4_methods()",
+                             ("GP with p = CosineLobe", "add_sample_pos",
+                              "compute_integral_BMC"),
+                             "BMC IS is a GP whose p is CosineLobe(1), which goes into z")
     y = np.asarray(draw.pool[0].positions)[:, 1]
-    cosine = y / math.pi
     pdf, p, f = (rendered.arrays[key] for key in ("pdf", "p", "f"))
-    reasons = []
-    for row, label in enumerate(render.WORKBENCH_LABELS):
-        if np.all(np.isnan(pdf[row])):
-            reasons.append(f"no method labelled {label!r}")
-        elif not np.all(close(pdf[row], cosine)):
-            reasons.append(f"{label} does not sample from the cosine, CosinePDF(1) "
-                           "(density cos / pi)")
-    if not reasons:
-        if not np.all(close(p[1], y)):
-            reasons.append("BMC IS's p is not the cosine (p_func = CosineLobe(1), which "
-                           "goes into z)")
-        if np.all(close(f[1], y ** 4)):
-            reasons.append("BMC IS's values keep the cosine: with p = cos the GP models "
-                           "f = cos^3 alone")
-        elif not np.all(close(f[1], y ** 3)):
-            reasons.append("BMC IS's values are not f = cos^3")
-    return check.fail("; ".join(reasons)) if reasons else check.succeed()
+    if np.all(np.isnan(pdf)):
+        return check.fail(f"practice4_methods() has no method labelled {label!r} (the "
+                          "handout's stub adds none)")
+    if not np.all(close(pdf, y / math.pi)):
+        return check.fail(f"{label} does not sample from the cosine, CosinePDF(1) "
+                          "(density cos / pi)")
+    if label == "MC IS":
+        return check.succeed()
+    if not np.all(close(p, y)):
+        return check.fail("BMC IS's p is not the cosine (p_func = CosineLobe(1), which "
+                          "goes into z)")
+    if np.all(close(f, y ** 4)):
+        return check.fail("BMC IS's values keep the cosine: with p = cos the GP models "
+                          "f = cos^3 alone")
+    if not np.all(close(f, y ** 3)):
+        return check.fail("BMC IS's values are not f = cos^3")
+    return check.succeed()
 
 
 JUDGES = {"inv_q": _judge_inv_q, "z": _judge_z, "bmc_sum": _judge_sum,
           "workbench": _judge_workbench, "bmc_furnace": _judge_bmc_furnace,
           "bmc_box": _judge_bmc_box,
           "bmc_pool": _judge_pool, "cmcis_furnace": _judge_cmcis_furnace,
-          "bmcis_furnace": _judge_bmcis_furnace, "workbench4": _judge_workbench4}
+          "bmcis_furnace": _judge_bmcis_furnace,
+          "workbench_mc_is": _judge_workbench_method,
+          "workbench_bmc_is": _judge_workbench_method}

@@ -6,13 +6,15 @@ practice3_checks.py judges this data. Here your own modules run:
   after random.seed (the course's set-up draws its directions with sample_set_hemisphere);
 - "bmc_sum": your compute_integral_BMC() on given weights and colours;
 - "workbench": your workbench's compute_estimate_bmc(gp, sample_pos_, sample_values_) with
-  a GP of the kit;
+  a GP of the kit; a workbench without it (the course's script) is read, not run: which
+  of the course's calls of a BMC estimate its code makes;
 - "bmc_furnace", "bmc_box", "bmc_pool", "bmcis_furnace": your
   BayesianMonteCarloIntegrator (3.3 in the furnace and in a box of emitting walls, 3.3.2)
   and BMCISIntegrator (4.2) with GPs of the kit, whose weights practice3_scenes.py
   computed: a mistake of your GaussianProcess.py costs Assignment 3.1 alone;
-- "workbench4": the pdf, p and f of the MC IS and BMC IS methods of your workbench's
-  practice4_methods() at given directions;
+- "workbench_mc_is", "workbench_bmc_is": the pdf, p and f of the MC IS and BMC IS methods
+  of your workbench's practice4_methods() at given directions (a script without it: read
+  as for "workbench");
 - "cmcis_furnace": classic Monte Carlo with cosine sampling (4.1): your CMCISIntegrator,
   or CMCIntegrator(..., pdf=CosinePDF(1)) when you have none and your CMCIntegrator takes
   pdf.
@@ -33,7 +35,7 @@ Rendered = practice1_render.Rendered
 ERROR_TEXT = practice1_render.ERROR_TEXT
 GP_MODULE = "GaussianProcess"
 NAMES = ("inv_q", "z", "bmc_sum", "workbench", "bmc_furnace", "bmc_box", "bmc_pool",
-         "cmcis_furnace", "bmcis_furnace", "workbench4")
+         "cmcis_furnace", "bmcis_furnace", "workbench_mc_is", "workbench_bmc_is")
 
 
 def gaussian_process():
@@ -168,50 +170,86 @@ def _workbench(rendered, draw, out):
     common = practice1_render.course_modules()[0]
     bench = practice2_render.workbench()
     estimate = getattr(bench, "compute_estimate_bmc", None)
-    if estimate is None:
-        raise AttributeError("AppWorkbench.py defines no compute_estimate_bmc(gp, "
-                             "sample_pos_, sample_values_), the handout's function of "
-                             "Assignment 3.2")
-    results = []
-    for gp_set in draw.pool:
-        gp = KitGP(common, gp_set, common.Constant(1))
-        positions = [common.Vector3D(*p) for p in gp_set.positions]
-        values = [common.RGBColor(p[1], 0.0, 0.0) for p in gp_set.positions]  # cos
-        value = estimate(gp, positions, values)
-        results.append(_channels(value)[0] if hasattr(value, "r") else _number(rendered,
-                                                                                value))
-    rendered.arrays["estimates"] = np.array(results, dtype=np.float64)
+    rendered.arrays["script"] = script_calls(bench, "compute_estimate_bmc")
+    results = np.full(len(draw.pool), np.nan)
+    if estimate is not None:
+        for k, gp_set in enumerate(draw.pool):
+            gp = KitGP(common, gp_set, common.Constant(1))
+            positions = [common.Vector3D(*p) for p in gp_set.positions]
+            values = [common.RGBColor(p[1], 0.0, 0.0) for p in gp_set.positions]  # cos
+            value = estimate(gp, positions, values)
+            results[k] = (_channels(value)[0] if hasattr(value, "r")
+                          else _number(rendered, value))
+    rendered.arrays["estimates"] = results
 
 
 WORKBENCH_LABELS = ("MC IS", "BMC IS")  # Practice 4's methods that its students add
+WORKBENCH_CHECKS = {"workbench_mc_is": "MC IS", "workbench_bmc_is": "BMC IS"}
+# What a course-style workbench (a script, no function to call) is judged on: whether its
+# code calls these, read from its source (never run); the last: whether it defines the
+# handout's function, which is then called instead
+SCRIPT_CALLS = ("GP with p = 1", "add_sample_pos", "add_sample_val",
+                "compute_integral_BMC", "CosinePDF", "GP with p = CosineLobe",
+                "compute_estimate_cmc", "the handout's function")
 
 
-def _workbench4(rendered, draw, out):
-    """For MC IS and BMC IS of the workbench's practice4_methods() (the handout's function
-    of 4.1 and 4.2), at the directions of the draw's first GP: the pdf's value, p (nan
-    for a classic method) and f, the product of the GP's value functions (the whole
-    integrand, PRACTICE4_INTEGRAND's, when it names none); rows nan for a method that is
-    not there."""
+def script_calls(bench, function):
+    """1.0 or 0.0 for each of SCRIPT_CALLS: whether the source of the workbench module
+    bench calls it anywhere (module level or in a function; a GP's p given there, or as
+    a name assigned it), and whether bench defines function."""
+    import ast
+    tree = ast.parse(Path(bench.__file__).read_text(encoding="utf-8"))
+    assigned = {node.targets[0].id: node.value for node in ast.walk(tree)
+                if isinstance(node, ast.Assign) and len(node.targets) == 1
+                and isinstance(node.targets[0], ast.Name)}
+    called, gp_p = set(), set()
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Call):
+            continue
+        name = _called_name(node.func)
+        called.add(name)
+        if name == "GP":
+            for p in node.args[1:2] + [k.value for k in node.keywords if k.arg == "p_func"]:
+                p = assigned.get(p.id, p) if isinstance(p, ast.Name) else p
+                if isinstance(p, ast.Call):
+                    gp_p.add(_called_name(p.func))
+                elif isinstance(p, ast.Constant) and p.value == 1:
+                    gp_p.add("Constant")
+    flags = ["Constant" in gp_p] + [name in called for name in SCRIPT_CALLS[1:5]] + [
+        "CosineLobe" in gp_p, "compute_estimate_cmc" in called, hasattr(bench, function)]
+    return np.array(flags, dtype=np.float64)
+
+
+def _called_name(func):
+    """The name a call calls: f of f(...) and of x.f(...)."""
+    return getattr(func, "id", None) or getattr(func, "attr", None)
+
+
+def _workbench_method(rendered, draw, out):
+    """For the method of the check (WORKBENCH_CHECKS) of the workbench's
+    practice4_methods() (the handout's function of 4.1 and 4.2), at the directions of
+    the draw's first GP: the pdf's value, p (nan for a classic method) and f, the product
+    of the GP's value functions (the whole integrand, PRACTICE4_INTEGRAND's, when it names
+    none); nan for a method that is not there; and the script's calls."""
     common = practice1_render.course_modules()[0]
     bench = practice2_render.workbench()
-    methods_of = getattr(bench, "practice4_methods", None)
-    if methods_of is None:
-        raise AttributeError("AppWorkbench.py defines no practice4_methods(), the handout's "
-                             "function of Practice 4's methods")
+    rendered.arrays["script"] = script_calls(bench, "practice4_methods")
     directions = [common.Vector3D(*p) for p in draw.pool[0].positions]
-    table = np.full((3, len(WORKBENCH_LABELS), len(directions)), np.nan)
-    for method in methods_of():
-        if method.label not in WORKBENCH_LABELS:
+    row = np.full((3, len(directions)), np.nan)
+    methods_of = getattr(bench, "practice4_methods", None)
+    label = WORKBENCH_CHECKS[rendered.name]
+    for method in (methods_of() or ()) if methods_of is not None else ():
+        if method.label != label:
             continue
-        row = WORKBENCH_LABELS.index(method.label)
-        table[0, row] = [method.pdf.get_val(d) for d in directions]
+        row[0] = [method.pdf.get_val(d) for d in directions]
         if method.p_func is None:
-            continue
-        table[1, row] = [method.p_func.eval(d) if hasattr(method.p_func, "eval")
-                         else float(method.p_func) for d in directions]
+            break
+        row[1] = [method.p_func.eval(d) if hasattr(method.p_func, "eval")
+                  else float(method.p_func) for d in directions]
         functions = method.value_functions or bench.PRACTICE4_INTEGRAND.functions
-        table[2, row] = [math.prod(f.eval(d) for f in functions) for d in directions]
-    rendered.arrays.update(pdf=table[0], p=table[1], f=table[2])
+        row[2] = [math.prod(f.eval(d) for f in functions) for d in directions]
+        break
+    rendered.arrays.update(pdf=row[0], p=row[1], f=row[2])
 
 
 def _number(rendered, value):
@@ -372,7 +410,7 @@ def _bmc_pool(rendered, draw, out):
 COLLECTORS = {"inv_q": _inv_q, "z": _z, "bmc_sum": _bmc_sum, "workbench": _workbench,
               "bmc_furnace": _bmc_furnace, "bmc_box": _bmc_box, "bmc_pool": _bmc_pool,
               "cmcis_furnace": _cmcis_furnace, "bmcis_furnace": _bmcis_furnace,
-              "workbench4": _workbench4}
+              "workbench_mc_is": _workbench_method, "workbench_bmc_is": _workbench_method}
 
 # What the step server asks of every practice's render module
 draw_from_json = scenes.draw_from_json

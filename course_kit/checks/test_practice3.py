@@ -4,7 +4,8 @@
     python -m pytest -k 3_1          Assignment 3.1 only
 
 Assignment 3.1's checks call your GaussianProcess.py on given positions, weights and
-values; 3.2's, your workbench's compute_estimate_bmc; 3.3's and 3.3.2's render small scenes
+values; 3.2's, your workbench's compute_estimate_bmc (a workbench written as the
+course's script, with no function to call, is read for the course's calls); 3.3's and 3.3.2's render small scenes
 with your BayesianMonteCarloIntegrator, given GPs of the kit whose weights are known, so
 that each assignment is judged on its own (practice3_checks.py says how). A failing test
 says what differs, names the mistake when it recognises it, and writes your image and the

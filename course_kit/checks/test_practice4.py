@@ -3,7 +3,10 @@
     python -m pytest                 all of them
     python -m pytest -k 4_2          Assignment 4.2 only
 
-Assignment 4.1's check renders a white furnace with classic Monte Carlo and cosine
+Each assignment has a check of the workbench's method (your practice4_methods(): MC IS
+samples from the cosine; BMC IS has p = cos and models f = cos^3 alone; a workbench written
+as the course's script, with no function to call, is read for the course's calls), and
+one of the renderer's integrator. Assignment 4.1's renders a white furnace with classic Monte Carlo and cosine
 sampling (CMCIntegrator(n, filename_, pdf=CosinePDF(1)), or your CMCISIntegrator), where
 every term of the estimate is the same: the answer is exact. 4.2's renders it with your
 BMCISIntegrator given a GP of the kit (p = cos, known weights). practice3_checks.py says
@@ -29,6 +32,9 @@ def test_assignment_4_2_bmc_importance_sampling_furnace():
     passes("bmcis_furnace")
 
 
-def test_optional_4_1_and_4_2_workbench_methods():
-    """The workbench's MC IS and BMC IS (practice4_methods): checked, not graded."""
-    passes("workbench4")
+def test_assignment_4_1_workbench_mc_is():
+    passes("workbench_mc_is")
+
+
+def test_assignment_4_2_workbench_bmc_is():
+    passes("workbench_bmc_is")
