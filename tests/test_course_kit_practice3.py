@@ -228,11 +228,23 @@ def write_untouched_and_hostile(root, folder):
         submissions.write_hostile(folder / hostile.name, hostile, root / "handout3")
 
 
+def grade_both(root, folder, isolation, seed):
+    """{practice: {submission: record}} of the submissions of folder graded for Practices 3
+    and 4 in isolation, on inputs drawn with seed + the practice; results in root."""
+    return {practice: {record["submission"]: record for record in
+                       course_kit.grader.grade_folder(
+                           folder, root / f"results{practice}",
+                           course_kit.grader.load_config(practice=practice), jobs=2,
+                           progress=False, isolation=isolation,
+                           draws=random.Random(seed + practice))}
+            for practice in (3, 4)}
+
+
 @pytest.fixture(scope="module")
 def graded(tmp_path_factory):
-    """{practice: {submission: record}} of FIXTURES and the untouched handouts of Practices 3
-    and 4,
-    graded in processes of their own on inputs drawn with a seed."""
+    """{practice: {submission: record}} of FIXTURES, the untouched handouts of Practices 3
+    and 4 and the hostile submissions, graded in processes of their own on inputs drawn
+    with a seed."""
     if not SUPPORTED:
         pytest.skip(str(course_kit.isolation.unsupported()))
     root = tmp_path_factory.mktemp("bayesian")
@@ -240,13 +252,7 @@ def graded(tmp_path_factory):
     for fixture in submissions.FIXTURES:
         submissions.write(folder / fixture.name, fixture.variant)
     write_untouched_and_hostile(root, folder)
-    return {practice: {record["submission"]: record for record in
-                       course_kit.grader.grade_folder(
-                           folder, root / f"results{practice}",
-                           course_kit.grader.load_config(practice=practice), jobs=2,
-                           progress=False, isolation="process",
-                           draws=random.Random(40 + practice))}
-            for practice in (3, 4)}
+    return grade_both(root, folder, "process", 40)
 
 
 @pytest.mark.parametrize("practice", [3, 4])
@@ -304,13 +310,7 @@ def graded_in_bubblewrap(tmp_path_factory):
     folder = root / "submissions"
     submissions.write(folder / "right", submissions.FIXTURES[0].variant)
     write_untouched_and_hostile(root, folder)
-    return {practice: {record["submission"]: record for record in
-                       course_kit.grader.grade_folder(
-                           folder, root / f"results{practice}",
-                           course_kit.grader.load_config(practice=practice), jobs=2,
-                           progress=False, isolation="bubblewrap",
-                           draws=random.Random(50 + practice))}
-            for practice in (3, 4)}
+    return grade_both(root, folder, "bubblewrap", 50)
 
 
 @pytest.mark.parametrize("practice", [3, 4])
