@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import course_bayesian_submissions as submissions
+import course_kit.autograder
 import course_kit.grader
 import course_kit.handout
 import course_kit.isolation
@@ -19,6 +20,7 @@ sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice3_checks as checks  # noqa: E402  (found through the line above)
 import practice3_render as render  # noqa: E402
 import practice3_scenes as scenes  # noqa: E402
+from test_course_autograder import autograder_root, run_autograder  # noqa: E402
 
 S = 1.4
 K_SAME = 2 ** (2 * S - 1) / S  # k(omega, omega)
@@ -321,3 +323,17 @@ def test_in_bubblewrap_the_hostile_get_what_the_untouched_handout_gets(graded_in
     untouched = [s["points"] for s in records["untouched"]["steps"]]
     for hostile in submissions.HOSTILE:
         assert [s["points"] for s in records[hostile.name]["steps"]] == untouched, hostile
+
+
+@pytest.mark.parametrize("practice", [3, 4])
+def test_the_autograder_grades_the_workbench_too(practice, tmp_path):
+    if not SUPPORTED:
+        pytest.skip(str(course_kit.isolation.unsupported()))
+    archive = course_kit.autograder.write_zip(tmp_path / "ag.zip", practice=practice)
+    root = autograder_root(archive, tmp_path / "root")
+    for name, text in submissions.files(submissions.FIXTURES[0].variant).items():
+        (root / "submission" / name).write_text(text)
+    results, ran = run_autograder(root, isolation="process")
+    assert results["score"] == 100, ran.stdout[-2000:]
+    assert [test["number"] for test in results["tests"]] == {
+        3: ["3.1", "3.2", "3.3", "3.3.2"], 4: ["4.1", "4.2"]}[practice]
