@@ -7,7 +7,9 @@ inputs of a Trial, drawn at grading time (practice3_scenes.draw_inputs: the posi
 noise of the GP's checks, the seed of the course's z estimate, the BMC sums' weights and
 colours, the sample sets of the GPs handed to the integrators with the weights computed
 here, the furnace's and the floor's places and colours). That process hands back data only
-(Q^-1, z, sums, images, the rays of 3.3.2), judged here by the students' own rules.
+(Q^-1, z, sums, images, the rays of 3.3.2, the workbench's estimates and methods, or,
+for a workbench written as the course's script, which of the course's calls its source
+makes), judged here by the students' own rules.
 
 One mistake costs one step: the integrators' steps (3.3, 3.3.2, 4.2) run with GPs of the
 kit whose weights this process computed and handed in as data, never with the student's
@@ -61,7 +63,7 @@ def expected_arrays(name, draw):
         return {"estimates": (float64, (len(draw.pool),)), **script}
     if name in render.WORKBENCH_CHECKS:
         n_directions = (len(draw.pool[0].positions),)
-        return {key: (float64, n_directions) for key in ("pdf", "p", "f")} | script
+        return {**{key: (float64, n_directions) for key in ("pdf", "p", "f")}, **script}
     image = {"image": (float64, (draw.size, draw.size, 3))}
     if name == "bmc_pool":
         image.update(directions=(float64, (draw.size, draw.size, draw.n_samples, 3)),

@@ -12,6 +12,10 @@ keeps what it makes as data; this module judges it:
   integrator in the white furnace (the GPs handed to your integrators are the kit's, with
   known weights, so that their pixels are known exactly; cosine sampling makes classic
   Monte Carlo exact there);
+- a workbench written as the course's script (no compute_estimate_bmc or
+  practice4_methods to call) is read, not run: it passes when its code makes the course's
+  calls of the step's estimate (a GP of the right p given positions and values,
+  compute_integral_BMC; CosinePDF for MC IS), and the check's note says so;
 - compute_z: equal, to rounding, to the course's estimate on the directions that
   sample_set_hemisphere draws after random.seed (the handout's set-up); a z computed
   otherwise must lie within the tolerance of monte_carlo_check.py around the exact z for
