@@ -14,6 +14,10 @@ random(), in the same order); all give the plain code's answers, bit for bit, fa
   operations and order of the plain code, with a HitData made only for the nearest hit;
   for rays from the camera, a wall along the axes is tested without the products by
   zero, which add nothing;
+- arrays of rays: the Bayesian integrators' sample rays, of all the pixels of a window of
+  a task's camera rays at once, tested on numpy arrays in the operations and order of the
+  scalar tests (pyrt/array_intersections.py), the colours handed out only for the very
+  ray and draws of random() they were made with (lookahead.py);
 - culling: a ray from the camera, or a shadow ray ending at a point light, tests only the
   objects that a ray from that point in its direction can reach (each object's cone, seen
   from the camera or the light, with a margin far above rounding); and a flat object
@@ -38,6 +42,8 @@ The modules, each on one concern, in the order they import each other:
     queries        AcceleratedQueries: closest_hit and any_hit on plain floats
     phong          AcceleratedPhong: PhongIntegrator.compute_color on plain floats
     monte_carlo    AcceleratedCMC: CMCIntegrator.compute_color on plain floats
+    lookahead      the colours of a task's next camera rays, made together ahead of the
+                   loop and handed out only for the ray and draws they were made with
     bayesian       AcceleratedBMC, AcceleratedBMCIS: the Bayesian integrators' compute_color
     accelerated    the with-block that stands them in for a render (accelerated, plain)
 

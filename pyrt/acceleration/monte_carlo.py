@@ -108,11 +108,16 @@ class AcceleratedCMC:
         less to make, pixel after pixel), or the pixel's colour when the ray misses
         (the map, or BLACK), or when the plain code must make it (a direction that is not
         of unit length, a BRDF that is not a Lambertian)."""
+        frame = self.camera_frame(ray)
+        return self.plain_color(ray) if frame is None else frame
+
+    def camera_frame(self, ray):
+        """camera_hit(ray), but None where the plain code must make the pixel's colour."""
         d, o = ray.d, ray.o
         dx, dy, dz, ox, oy, oz = d.x, d.y, d.z, o.x, o.y, o.z
         squares = dx * dx + dy * dy + dz * dz
         if not UNIT_LOW <= squares <= UNIT_HIGH:
-            return self.plain_color(ray)
+            return None
         inverse = 1.0 / sqrt(squares)  # r = Normalize(d), for the plane tests
         rx, ry, rz = dx * inverse, dy * inverse, dz * inverse
         nearest = self.queries.nearest(None, ox, oy, oz, dx, dy, dz, rx, ry, rz, ray.t_min,
@@ -122,7 +127,7 @@ class AcceleratedCMC:
         test, constants, index, t = nearest
         brdf = self.objects[index].get_BRDF()
         if type(brdf) is not Lambertian:
-            return self.plain_color(ray)
+            return None
         px, py, pz, nx, ny, nz = POINT_AND_NORMAL[test](constants, ox, oy, oz, dx, dy, dz,
                                                         rx, ry, rz, t)
         # center_around_normal's frame: w = n, v = Normalize(Cross(up, w)), u = Cross(v, w)
