@@ -259,6 +259,12 @@ def plot_methods(curves: dict, path: Path) -> None:
             if samples in (8, 256):
                 axes.annotate(f"N={samples}", (t, e), textcoords="offset points",
                               xytext=(4, 4), fontsize=7)
+    # seconds as plain numbers at 1, 2 and 5 of each decade; the minor ticks unlabelled
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+    axes.set_xticks([step * 10.0 ** decade for decade in range(-2, 3) for step in (1, 2, 5)
+                     if axes.get_xlim()[0] <= step * 10.0 ** decade <= axes.get_xlim()[1]])
+    axes.xaxis.set_major_formatter(FuncFormatter(lambda seconds, _: f"{seconds:g}"))
+    axes.xaxis.set_minor_formatter(NullFormatter())
     axes.set_xlabel("time of the render, the GPs' making included (s)")
     axes.set_ylabel("RMSE against the reference")
     axes.set_title("Error against time: classic and Bayesian Monte Carlo")

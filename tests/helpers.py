@@ -16,6 +16,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+from hypothesis import strategies as st
 
 from AppRenderer import cornell_box_scene, sphere_scene
 import pyrt.acceleration.queries
@@ -37,6 +38,19 @@ SUBPROCESS_TIMEOUT = 300  # seconds; only there so that a hung child cannot hang
 TIGHT = 1e-12  # the tolerance of values worked out by hand
 INF = float("inf")
 GOOD = Vector3D(0.0, 0.0, -5.0)  # a valid point, for the arguments not under test
+
+# Hypothesis strategies: points, unit directions and PyRT's primitives within a few units
+# of the origin, for the property tests of the intersection tests
+coordinates = st.floats(-4.0, 4.0)
+vectors = st.tuples(coordinates, coordinates, coordinates).map(lambda v: Vector3D(*v))
+directions = vectors.filter(lambda v: Length(v) > 0.1).map(Normalize)
+long_vectors = vectors.filter(lambda v: Length(v) > 0.5)
+primitives = st.one_of(
+    st.builds(Sphere, vectors, st.floats(0.05, 3.0)),
+    st.builds(InfinitePlane, vectors, long_vectors),
+    st.tuples(vectors, long_vectors, long_vectors).filter(
+        lambda sides: Length(Cross(sides[1], sides[2])) > 0.2).map(
+        lambda sides: Parallelogram(*sides)))
 
 
 def as_tuple(v):

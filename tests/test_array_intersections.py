@@ -8,21 +8,13 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from helpers import primitives
 from pyrt.acceleration.queries import _object_test
 from pyrt.array_intersections import ARRAY_TESTS
 from PyRT_Common import *
 from PyRT_Core import *
 
 PROPERTY = settings(max_examples=200, deadline=None)
-coordinates = st.floats(-4.0, 4.0)
-vectors = st.tuples(coordinates, coordinates, coordinates).map(lambda v: Vector3D(*v))
-long_vectors = vectors.filter(lambda v: Length(v) > 0.5)
-primitives = st.one_of(
-    st.builds(Sphere, vectors, st.floats(0.05, 3.0)),
-    st.builds(InfinitePlane, vectors, long_vectors),
-    st.tuples(vectors, long_vectors, long_vectors).filter(
-        lambda sides: Length(Cross(sides[1], sides[2])) > 0.2).map(
-        lambda sides: Parallelogram(*sides)))
 
 
 def scalar_distances(test, constants, rays, t_min):

@@ -6,6 +6,7 @@ import math
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from helpers import directions, primitives, vectors
 from pyrt.acceleration.queries import _object_test
 from PyRT_Common import *
 from PyRT_Core import *
@@ -13,16 +14,6 @@ from pyrt.scalar_intersections import (POINT_AND_NORMAL, aligned_wall_distance, 
                                       parallelogram_distance)
 
 PROPERTY = settings(max_examples=300, deadline=None)
-coordinates = st.floats(-4.0, 4.0)
-vectors = st.tuples(coordinates, coordinates, coordinates).map(lambda v: Vector3D(*v))
-directions = vectors.filter(lambda v: Length(v) > 0.1).map(Normalize)
-long_vectors = vectors.filter(lambda v: Length(v) > 0.5)
-primitives = st.one_of(
-    st.builds(Sphere, vectors, st.floats(0.05, 3.0)),
-    st.builds(InfinitePlane, vectors, long_vectors),
-    st.tuples(vectors, long_vectors, long_vectors).filter(
-        lambda sides: Length(Cross(sides[1], sides[2])) > 0.2).map(
-        lambda sides: Parallelogram(*sides)))
 lengths = st.floats(0.25, 3.0) | st.floats(-3.0, -0.25)
 
 
