@@ -16,7 +16,7 @@ Figure 2 of Practice 3: the sphere scene at 500 x 500, 40 samples per hit, class
 Carlo beside BMC (a pool of POOL_SIZE GPs), each rendered on every core; the two images
 side by side.
 
-    python -m benchmarks.bayesian                    # about four minutes on two cores
+    python -m benchmarks.bayesian                    # about a minute on two cores
 Results go to out/bayesian.md and out/bayesian_figure2.png.
 """
 import argparse
