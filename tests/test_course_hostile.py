@@ -27,12 +27,12 @@ import course_kit.grader
 import course_kit.handout
 import course_kit.sandbox
 import course_kit_students as students
-from helpers import REPO, SUBPROCESS_TIMEOUT, headless_env
+from helpers import MAIN_PYTHON, REPO, SUBPROCESS_TIMEOUT, headless_env
 from test_course_autograder import (REFUSAL, assert_refused, autograder_root,
                                    run_autograder)
 
 pytestmark = pytest.mark.skipif(
-    sys.version_info[:2] != (3, 11),
+    sys.version_info[:2] != MAIN_PYTHON,
     reason="the hostile submissions' matrix runs on Python 3.11 only, CI's main Python")
 MODES = ["bubblewrap", "unprivileged user", "process"]
 SYSTEM_PYTHON = Path("/usr/bin/python3")

@@ -25,7 +25,7 @@ import course_kit.isolation
 import course_kit.judging
 import course_kit.references
 import course_kit_students as students
-from helpers import REPO, run_python
+from helpers import REPO, matrix_on_the_main_python_only, run_python
 from PyRT_Common import Vector3D
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
@@ -505,6 +505,7 @@ def digest(folder):
 def graded(handout, tmp_path_factory):
     """Every submission of VERDICTS graded with the LIMITS: (the submissions' folder, its
     digest before grading, the results' folder, the records, the outside path)."""
+    matrix_on_the_main_python_only()
     if course_kit.isolation.unsupported():  # Windows: the handout's tests still run
         pytest.skip(course_kit.isolation.unsupported())
     base = tmp_path_factory.mktemp("grading")

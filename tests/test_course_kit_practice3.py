@@ -15,6 +15,7 @@ import course_kit.grader
 import course_kit.handout
 import course_kit.isolation
 import course_kit.sandbox
+from helpers import matrix_on_the_main_python_only
 
 sys.path.insert(0, str(course_kit.handout.CHECKS))
 import practice3_checks as checks  # noqa: E402  (found through the line above)
@@ -247,6 +248,7 @@ def graded(tmp_path_factory):
     """{practice: {submission: record}} of FIXTURES, the untouched handouts of Practices 3
     and 4 and the hostile submissions, graded in processes of their own on inputs drawn
     with a seed."""
+    matrix_on_the_main_python_only()
     if not SUPPORTED:
         pytest.skip(str(course_kit.isolation.unsupported()))
     root = tmp_path_factory.mktemp("bayesian")
@@ -306,6 +308,7 @@ def test_a_hostile_submission_gets_what_the_untouched_handout_gets(graded, pract
 def graded_in_bubblewrap(tmp_path_factory):
     """{practice: {submission: record}} of the untouched handouts, the hostile submissions
     and the right one, graded in bubblewrap's sandbox."""
+    matrix_on_the_main_python_only()
     if course_kit.sandbox.why_no_bubblewrap():
         pytest.skip("needs bubblewrap's sandbox: " + course_kit.sandbox.why_no_bubblewrap())
     root = tmp_path_factory.mktemp("bayesian_bwrap")

@@ -17,7 +17,7 @@ import course_kit.feedback
 import course_kit.grader
 import course_kit.handout
 import course_submissions as submissions
-from helpers import REPO, run_python
+from helpers import REPO, matrix_on_the_main_python_only, run_python
 from test_course_kit import CHECK_TESTS, failures_of_the_checks
 
 FIXTURES = {fixture.name: fixture for fixture in submissions.FIXTURES}
@@ -47,6 +47,7 @@ def real_submissions(tmp_path_factory):
 @pytest.fixture(scope="session")
 def graded(real_submissions, tmp_path_factory):
     """Every submission of FIXTURES graded once, two at a time, with the kit's settings."""
+    matrix_on_the_main_python_only()
     results = tmp_path_factory.mktemp("real_results")
     records = course_kit.grader.grade_folder(real_submissions, results,
                                          course_kit.grader.load_config(), jobs=2,
@@ -59,6 +60,7 @@ def checks_run_by_students(real_submissions, tmp_path_factory):
     """{submission: {test of the students' checks: its failure message, or None}}: each
     submission's four files copied over a handout, where `python -m pytest` runs, two
     submissions at a time."""
+    matrix_on_the_main_python_only()
     base = tmp_path_factory.mktemp("real_checks")
     handout = course_kit.handout.write_handout(base / "handout")
 

@@ -20,7 +20,7 @@ import course_kit.handout
 import course_kit.judging_practice2
 import course_kit.sandbox
 import course_submissions_practice2 as submissions
-from helpers import REPO, SUBPROCESS_TIMEOUT, headless_env
+from helpers import REPO, SUBPROCESS_TIMEOUT, headless_env, matrix_on_the_main_python_only
 from PyRT_Core import Camera
 from test_course_autograder import autograder_root, run_autograder
 
@@ -233,6 +233,7 @@ def test_the_workbenchs_script_is_not_run_only_its_definitions(handout, tmp_path
 @pytest.fixture(scope="module", params=MODES)
 def graded(request, handout, tmp_path_factory):
     """{submission: record} of every fixture and hostile submission graded in the mode."""
+    matrix_on_the_main_python_only()
     mode = request.param
     if mode == "bubblewrap" and course_kit.sandbox.why_no_bubblewrap():
         pytest.skip("needs bubblewrap's sandbox: " + course_kit.sandbox.why_no_bubblewrap())
