@@ -505,9 +505,9 @@ def digest(folder):
 def graded(handout, tmp_path_factory):
     """Every submission of VERDICTS graded with the LIMITS: (the submissions' folder, its
     digest before grading, the results' folder, the records, the outside path)."""
-    matrix_on_the_main_python_only()
     if course_kit.isolation.unsupported():  # Windows: the handout's tests still run
         pytest.skip(course_kit.isolation.unsupported())
+    matrix_on_the_main_python_only()
     base = tmp_path_factory.mktemp("grading")
     folder, results, outside = base / "submissions", base / "results", base / "outside.txt"
     folder.mkdir()

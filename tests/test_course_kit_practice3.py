@@ -248,9 +248,9 @@ def graded(tmp_path_factory):
     """{practice: {submission: record}} of FIXTURES, the untouched handouts of Practices 3
     and 4 and the hostile submissions, graded in processes of their own on inputs drawn
     with a seed."""
-    matrix_on_the_main_python_only()
     if not SUPPORTED:
         pytest.skip(str(course_kit.isolation.unsupported()))
+    matrix_on_the_main_python_only()
     root = tmp_path_factory.mktemp("bayesian")
     folder = root / "submissions"
     for fixture in submissions.FIXTURES:
